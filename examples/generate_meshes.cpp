@@ -1,0 +1,51 @@
+// Writes the meshes of the example scenes into a folder. Scenes are z-up, in metres.
+#include <cstdio>
+#include <numbers>
+#include <string>
+
+#include "common/error.h"
+#include "mesh/import.h"
+#include "mesh/shapes.h"
+
+namespace {
+
+using bw::Vec3d;
+namespace mesh = bw::mesh;
+
+// A house: a gable-roofed prism (polygon in the xz plane, extruded along y).
+bw::TriMesh house(double width, double depth, double wall_height, double roof_height) {
+  const std::vector<Eigen::Vector2d> gable = {
+      {0, 0}, {width, 0}, {width, wall_height}, {width / 2, wall_height + roof_height}, {0, wall_height}};
+  bw::TriMesh m = mesh::extrude(gable, 0, depth);
+  // Polygon (u, v) = (x, z); extrusion axis becomes -y... rotate so v is up (z) and
+  // the extrusion runs along +y.
+  bw::Mat3d r;
+  r << 1, 0, 0,  //
+      0, 0, 1,   //
+      0, 1, 0;   // (u, v, w) -> (u, w, v): a reflection, so flip faces after.
+  mesh::transform(m, r, Vec3d::Zero());
+  for (auto& t : m.triangles) std::swap(t[1], t[2]);
+  return m;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: bw-example-meshes OUTPUT_FOLDER\n");
+    return bw::kExitBadInput;
+  }
+  const std::string dir = argv[1];
+  try {
+    // Scene 1: a strong concrete wall, 0.2 m thick, 1.6 m wide, 1 m high.
+    mesh::export_mesh(mesh::box({0, -0.8, 0}, {0.2, 0.8, 1.0}), dir + "/wall.obj");
+    // Scene 2: a fragile plate, 0.06 m thick.
+    mesh::export_mesh(mesh::box({0, -0.5, 0}, {0.06, 0.5, 0.8}), dir + "/plate.obj");
+    // Scene 4: a house, 1 m x 1.2 m, walls 0.8 m, roof ridge 1.2 m.
+    mesh::export_mesh(house(1.0, 1.2, 0.8, 0.4), dir + "/house.obj");
+  } catch (const bw::Error& e) {
+    std::fprintf(stderr, "bw-example-meshes: %s\n", e.what());
+    return e.exit_code();
+  }
+  return 0;
+}

@@ -1,0 +1,55 @@
+#include "cli/tool.h"
+
+#include <cmath>
+#include <cstdio>
+#include <new>
+
+namespace bw::cli {
+
+const CLI::Validator kPositive(
+    [](std::string& input) -> std::string {
+      char* end = nullptr;
+      const double value = std::strtod(input.c_str(), &end);
+      if (end == input.c_str() || *end != '\0') return "'" + input + "' is not a number";
+      if (!std::isfinite(value) || value <= 0) return "'" + input + "' must be a positive number";
+      return {};
+    },
+    "POSITIVE", "positive");
+
+void setup(CLI::App& app, const std::string& examples) {
+  app.set_version_flag("--version", std::string(app.get_name()) + " " BW_VERSION);
+  if (!examples.empty()) app.footer("Examples:\n" + examples);
+  app.get_formatter()->column_width(34);
+}
+
+void note(const CLI::App& app, const std::string& message) {
+  std::fprintf(stderr, "%s: %s\n", app.get_name().c_str(), message.c_str());
+}
+
+int run(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
+  const std::string name = app.get_name();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    std::string what = e.what();
+    for (char& c : what)
+      if (c == '\n') c = ' ';
+    std::fprintf(stderr, "%s: %s (see %s --help)\n", name.c_str(), what.c_str(), name.c_str());
+    return kExitBadInput;
+  }
+  try {
+    return body();
+  } catch (const Error& e) {
+    std::fprintf(stderr, "%s: %s\n", name.c_str(), e.what());
+    return e.exit_code();
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "%s: out of memory\n", name.c_str());
+    return kExitFailure;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: internal error: %s\n", name.c_str(), e.what());
+    return kExitFailure;
+  }
+}
+
+}  // namespace bw::cli

@@ -1,0 +1,43 @@
+// Writing a file so that it appears under its final name only when complete.
+//
+// The data goes to a temporary file in the same folder (so that rename is atomic on
+// POSIX file systems); commit() renames it over the final name. If the object is
+// destroyed without commit (an exception, a failed run), the temporary file is
+// removed and whatever stood under the final name before is untouched.
+#pragma once
+
+#include <string>
+
+namespace bw {
+
+class AtomicFile {
+ public:
+  // Throws InputError when the folder of `path` does not exist or is not writable.
+  explicit AtomicFile(std::string path);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  AtomicFile(AtomicFile&& other) noexcept;
+  AtomicFile& operator=(AtomicFile&& other) noexcept;
+
+  const std::string& final_path() const { return final_path_; }
+  const std::string& temp_path() const { return temp_path_; }
+
+  // Renames the temporary file to the final name. Throws RunError on failure.
+  void commit();
+  // Removes the temporary file now (also done by the destructor).
+  void discard() noexcept;
+
+ private:
+  std::string final_path_;
+  std::string temp_path_;
+  bool committed_ = false;
+};
+
+// Writes `bytes` to `path` through an AtomicFile.
+void write_file_atomically(const std::string& path, const void* bytes, std::size_t size);
+
+// Throws InputError naming `path` unless its folder exists and is writable.
+void check_writable_folder_of(const std::string& path);
+
+}  // namespace bw

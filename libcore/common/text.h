@@ -1,0 +1,19 @@
+// Small formatting helpers for messages and summaries.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace bw {
+
+// "512 B", "3.2 KiB", "1.5 GiB".
+std::string human_bytes(std::uint64_t bytes);
+// "12.3 s", "4 min 05 s", "2 h 03 min".
+std::string human_duration(double seconds);
+// "1.25 M", "730 k", "12".
+std::string human_count(double count);
+// JSON string literal with quotes and escapes.
+std::string json_quote(std::string_view text);
+
+}  // namespace bw
