@@ -1,0 +1,147 @@
+#include "io/frame_file.h"
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "io/h5.h"
+
+namespace bw {
+namespace {
+
+constexpr const char* kKind = "frame";
+
+std::vector<double> flatten(const std::vector<Vec3d>& v) {
+  std::vector<double> flat(3 * v.size());
+  for (std::size_t i = 0; i < v.size(); ++i)
+    for (int k = 0; k < 3; ++k) flat[3 * i + k] = v[i][k];
+  return flat;
+}
+
+std::vector<Vec3d> unflatten(const std::vector<double>& flat) {
+  std::vector<Vec3d> v(flat.size() / 3);
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = Vec3d(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
+  return v;
+}
+
+template <class T>
+void read_optional(const h5::Group& step, const char* name, std::size_t n, std::vector<T>& out) {
+  if (!step.has(name)) return;
+  std::size_t rows = 0;
+  out = step.read_rows<T>(name, 0, &rows);
+  if (rows != n) fail_input("{}: holds {} values, expected one per particle ({})", step.where(name), rows, n);
+}
+
+}  // namespace
+
+FrameFields FrameData::fields() const {
+  FrameFields f;
+  f.velocity = !vx.empty();
+  f.density = !rho.empty();
+  f.pressure = !p.empty();
+  f.id = !id.empty();
+  f.boundary = !bx.empty();
+  return f;
+}
+
+std::string frame_file_name(const std::string& folder, int frame) {
+  return fmt::format("{}/{:06d}.h5", folder, frame);
+}
+
+void write_frame(const FrameData& f, const std::string& path) {
+  const std::size_t n = f.x.size();
+  auto check = [&](const auto& v, const char* name) {
+    if (!v.empty() && v.size() != n) fail_run("{}: field {} has {} values for {} particles", path, name, v.size(), n);
+  };
+  if (f.y.size() != n || f.z.size() != n) fail_run("{}: x, y, z differ in length", path);
+  check(f.vx, "vx"), check(f.vy, "vy"), check(f.vz, "vz"), check(f.rho, "rho"), check(f.p, "p"), check(f.id, "id");
+
+  h5::File file = h5::File::create(path, kKind);
+  h5::Group& root = file.root();
+  root.set_attr("frame", f.frame);
+  root.set_attr("time", f.time);
+  h5::Group step = root.create_group(fmt::format("Step#{}", f.frame));
+  step.set_attr("time", f.time);
+  step.write<float>("x", f.x);
+  step.write<float>("y", f.y);
+  step.write<float>("z", f.z);
+  if (!f.vx.empty()) {
+    step.write<float>("vx", f.vx);
+    step.write<float>("vy", f.vy);
+    step.write<float>("vz", f.vz);
+  }
+  if (!f.rho.empty()) step.write<float>("rho", f.rho);
+  if (!f.p.empty()) step.write<float>("p", f.p);
+  if (!f.id.empty()) step.write<std::int64_t>("id", f.id);
+  if (!f.bx.empty()) {
+    h5::Group boundary = step.create_group("boundary");
+    boundary.write<float>("x", f.bx);
+    boundary.write<float>("y", f.by);
+    boundary.write<float>("z", f.bz);
+  }
+  if (f.bodies.size() > 0) {
+    const BodyStates& b = f.bodies;
+    const std::uint64_t m = b.size();
+    h5::Group bodies = step.create_group("bodies");
+    bodies.write<std::int32_t>("id", b.id);
+    bodies.write<double>("position", flatten(b.position), {m, 3});
+    std::vector<double> q(4 * m);
+    for (std::size_t i = 0; i < m; ++i) {
+      q[4 * i] = b.orientation[i].w();
+      q[4 * i + 1] = b.orientation[i].x();
+      q[4 * i + 2] = b.orientation[i].y();
+      q[4 * i + 3] = b.orientation[i].z();
+    }
+    bodies.write<double>("orientation", q, {m, 4});
+    bodies.write<double>("linear_velocity", flatten(b.linear_velocity), {m, 3});
+    bodies.write<double>("angular_velocity", flatten(b.angular_velocity), {m, 3});
+  }
+  file.commit();
+}
+
+FrameData read_frame(const std::string& path) {
+  h5::File file = h5::File::open(path, kKind);
+  const h5::Group& root = file.root();
+  FrameData f;
+  f.frame = root.attr<std::int32_t>("frame");
+  f.time = root.attr<double>("time");
+  const std::string step_name = fmt::format("Step#{}", f.frame);
+  if (!root.is_group(step_name)) fail_input("{}: missing group {} for frame {}", file.name(), step_name, f.frame);
+  const h5::Group step = root.open_group(step_name);
+  std::size_t n = 0;
+  f.x = step.read_rows<float>("x", 0, &n);
+  read_optional(step, "y", n, f.y);
+  read_optional(step, "z", n, f.z);
+  if (f.y.size() != n || f.z.size() != n) fail_input("{}: missing y or z", step.where());
+  read_optional(step, "vx", n, f.vx);
+  read_optional(step, "vy", n, f.vy);
+  read_optional(step, "vz", n, f.vz);
+  read_optional(step, "rho", n, f.rho);
+  read_optional(step, "p", n, f.p);
+  read_optional(step, "id", n, f.id);
+  if (step.is_group("boundary")) {
+    const h5::Group b = step.open_group("boundary");
+    std::size_t k = 0;
+    f.bx = b.read_rows<float>("x", 0, &k);
+    read_optional(b, "y", k, f.by);
+    read_optional(b, "z", k, f.bz);
+  }
+  if (step.is_group("bodies")) {
+    const h5::Group g = step.open_group("bodies");
+    std::size_t m = 0, rows = 0;
+    f.bodies.id = g.read_rows<std::int32_t>("id", 0, &m);
+    auto read3 = [&](const char* name) {
+      auto v = unflatten(g.read_rows<double>(name, 3, &rows));
+      if (rows != m) fail_input("{}: {} rows, expected {}", g.where(name), rows, m);
+      return v;
+    };
+    f.bodies.position = read3("position");
+    f.bodies.linear_velocity = read3("linear_velocity");
+    f.bodies.angular_velocity = read3("angular_velocity");
+    const auto q = g.read_rows<double>("orientation", 4, &rows);
+    if (rows != m) fail_input("{}: {} rows, expected {}", g.where("orientation"), rows, m);
+    for (std::size_t i = 0; i < m; ++i) f.bodies.orientation.emplace_back(q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]);
+  }
+  return f;
+}
+
+}  // namespace bw

@@ -1,0 +1,60 @@
+// Files of kind "frame": one output frame of a simulation, in the H5Part layout
+// (docs/formats.md). Written by bw-sim, read by bw-render and bw-voronoi.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/geometry.h"
+
+namespace bw {
+
+// Rigid body states at one frame (empty when the scene has no bodies).
+struct BodyStates {
+  std::vector<std::int32_t> id;
+  std::vector<Vec3d> position;                 // centre of mass, world
+  std::vector<Eigen::Quaterniond> orientation; // reference configuration -> world
+  std::vector<Vec3d> linear_velocity;
+  std::vector<Vec3d> angular_velocity;         // world frame
+  std::size_t size() const { return id.size(); }
+};
+
+// Which optional fields a frame holds / a scene asks for.
+struct FrameFields {
+  bool velocity = false;   // vx, vy, vz
+  bool density = false;    // rho
+  bool pressure = false;   // p
+  bool id = false;         // id
+  bool boundary = false;   // boundary/x, y, z
+};
+
+struct FrameData {
+  std::int32_t frame = 0;
+  double time = 0;
+  // Fluid particles, one entry per particle (positions always present; the other
+  // arrays are empty unless their field is written).
+  std::vector<float> x, y, z;
+  std::vector<float> vx, vy, vz;
+  std::vector<float> rho, p;
+  std::vector<std::int64_t> id;
+  // Boundary particles in world coordinates (field "boundary").
+  std::vector<float> bx, by, bz;
+  BodyStates bodies;
+
+  std::size_t fluid_count() const { return x.size(); }
+  FrameFields fields() const;
+};
+
+// Writes the frame through a temporary file. Arrays of a field must have one entry
+// per particle; optional fields are written when non-empty.
+void write_frame(const FrameData& frame, const std::string& path);
+
+// Reads a frame file ("-" for standard input). Throws InputError naming the file
+// when it is not a frame or its arrays disagree in length.
+FrameData read_frame(const std::string& path);
+
+// "frames/000042.h5" for frame 42 under `folder`.
+std::string frame_file_name(const std::string& folder, int frame);
+
+}  // namespace bw

@@ -1,0 +1,72 @@
+// Files of kind "run": what a simulation was given and what it did, frame by frame
+// (docs/formats.md). Written by bw-sim after every frame, read by bw-info,
+// bw-voronoi replay and bw-render.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/geometry.h"
+
+namespace bw {
+
+struct SolidRecord {
+  std::string name;
+  std::string particles;          // absolute path of the particle file
+  std::string kind;               // "static", "dynamic" or "breakable"
+  Vec3d translation = Vec3d::Zero();
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+  double scale = 1;
+  std::int32_t body = -1;         // body of a dynamic or breakable solid
+};
+
+struct BodyRecord {
+  std::string name;
+  std::int32_t solid = -1;        // root solid
+  std::int32_t parent = -1;       // parent body of a fragment, -1 otherwise
+  double mass = 0;
+  Mat3d inertia = Mat3d::Zero();  // about the centre of mass, reference frame
+  Vec3d reference_center = Vec3d::Zero();
+  double created_time = 0;
+  std::int32_t voxels = 0;
+};
+
+// One row per written frame.
+struct FrameStats {
+  std::int32_t frame = 0;
+  double time = 0;
+  std::int64_t steps = 0;         // since the start
+  double dt_min = 0, dt_max = 0;  // over the steps since the previous frame
+  std::int64_t fluid = 0, boundary = 0, removed = 0;
+  double density_error_max = 0, density_error_mean = 0;
+  double kinetic_energy = 0, potential_energy = 0;
+  double wall_time = 0;           // seconds since the start of the run
+};
+
+struct FractureEvent {
+  double time = 0;
+  std::int32_t parent = -1;              // body that broke
+  std::vector<Vec3d> seeds;              // reference configuration
+  std::vector<std::int32_t> child_body;  // one entry per child
+  std::vector<std::int32_t> child_seed;  // index into seeds
+  std::vector<std::int32_t> child_component;
+};
+
+struct RunRecord {
+  std::string scene_text;
+  std::string scene_path;
+  std::string device;
+  std::string tool;
+  std::string status = "running";       // "complete", "running", or the error
+  std::vector<SolidRecord> solids;
+  std::vector<BodyRecord> bodies;
+  std::vector<FrameStats> frames;
+  std::vector<FractureEvent> fractures;
+};
+
+// Writes the whole record through a temporary file (called after every frame).
+void write_run(const RunRecord& run, const std::string& path);
+RunRecord read_run(const std::string& path);
+
+}  // namespace bw
