@@ -61,6 +61,8 @@ TriMesh import_mesh(const std::string& path, const ImportOptions& options, Impor
     std::string reason = importer.GetErrorString();
     for (char& c : reason)
       if (c == '\n') c = ' ';
+    // assimp drops points and lines first, then finds nothing left.
+    if (reason.find("No meshes remaining") != std::string::npos) fail_input("{}: the file holds no triangles", path);
     fail_input("{}: cannot read the mesh: {}", path, reason.empty() ? "unknown format" : reason);
   }
   TriMesh mesh;

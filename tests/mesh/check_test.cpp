@@ -1,0 +1,76 @@
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "mesh/check.h"
+#include "mesh/shapes.h"
+
+namespace {
+
+using bw::Vec3d;
+using bw::mesh::check_mesh;
+
+TEST(MeshCheck, ClosedBoxIsClosedAndOriented) {
+  const auto report = check_mesh(bw::mesh::box({0, 0, 0}, {1, 2, 3}, 3));
+  EXPECT_TRUE(report.closed());
+  EXPECT_TRUE(report.consistently_oriented());
+  EXPECT_TRUE(report.bounds_volume());
+  EXPECT_EQ(report.components, 1u);
+  EXPECT_EQ(report.degenerate_faces, 0u);
+  EXPECT_EQ(report.summary(), "closed and consistently oriented");
+}
+
+TEST(MeshCheck, MissingFaceGivesBoundaryEdges) {
+  auto mesh = bw::mesh::box({0, 0, 0}, {1, 1, 1});
+  mesh.triangles.pop_back();
+  const auto report = check_mesh(mesh);
+  EXPECT_FALSE(report.closed());
+  EXPECT_EQ(report.boundary_edges, 3u);
+  EXPECT_NE(report.summary().find("3 boundary edges"), std::string::npos);
+}
+
+TEST(MeshCheck, FlippedFaceIsInconsistent) {
+  auto mesh = bw::mesh::box({0, 0, 0}, {1, 1, 1});
+  std::swap(mesh.triangles[0][1], mesh.triangles[0][2]);
+  const auto report = check_mesh(mesh);
+  EXPECT_TRUE(report.closed());
+  EXPECT_FALSE(report.consistently_oriented());
+  EXPECT_EQ(report.misoriented_edges, 3u);
+}
+
+TEST(MeshCheck, ThirdFaceOnAnEdgeIsNonManifold) {
+  auto mesh = bw::mesh::box({0, 0, 0}, {1, 1, 1});
+  const auto t = mesh.triangles[0];
+  mesh.vertices.push_back({5, 5, 5});
+  mesh.triangles.push_back({t[0], t[1], static_cast<std::int32_t>(mesh.vertices.size() - 1)});
+  const auto report = check_mesh(mesh);
+  EXPECT_EQ(report.nonmanifold_edges, 1u);
+  EXPECT_FALSE(report.closed());
+}
+
+TEST(MeshCheck, CountsDegenerateNonFiniteAndBadIndices) {
+  auto mesh = bw::mesh::box({0, 0, 0}, {1, 1, 1});
+  mesh.vertices.push_back({0.5, 0.5, 0.5});
+  mesh.vertices.push_back({0.6, 0.6, 0.6});
+  mesh.vertices.push_back({0.7, 0.7, 0.7});  // collinear: zero area
+  const auto n = static_cast<std::int32_t>(mesh.vertices.size());
+  mesh.triangles.push_back({n - 3, n - 2, n - 1});
+  mesh.triangles.push_back({0, 1, 99});
+  mesh.vertices.push_back({std::numeric_limits<double>::quiet_NaN(), 0, 0});
+  const auto report = check_mesh(mesh);
+  EXPECT_EQ(report.degenerate_faces, 1u);
+  EXPECT_EQ(report.bad_indices, 1u);
+  EXPECT_EQ(report.nonfinite_vertices, 1u);
+  EXPECT_FALSE(report.bounds_volume());
+}
+
+TEST(MeshCheck, CountsComponents) {
+  auto mesh = bw::mesh::box({0, 0, 0}, {1, 1, 1});
+  bw::mesh::append(mesh, bw::mesh::icosphere({3, 0, 0}, 1, 1));
+  bw::mesh::append(mesh, bw::mesh::torus({0, 5, 0}, 1, 0.3, 12, 8));
+  const auto report = check_mesh(mesh);
+  EXPECT_EQ(report.components, 3u);
+  EXPECT_TRUE(report.bounds_volume());
+}
+
+}  // namespace

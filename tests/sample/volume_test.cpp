@@ -1,0 +1,156 @@
+// Volume sampling: the voxel volume converges to the mesh volume, exact inside tests
+// on meshes lying on cell planes, and the checks that guard it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "common/error.h"
+#include "mesh/properties.h"
+#include "mesh/shapes.h"
+#include "sample/sampler.h"
+#include "test_support.h"
+
+namespace {
+
+using bw::Vec3d;
+constexpr double kPi = std::numbers::pi;
+
+bw::SampledSolid sample_volume(const bw::TriMesh& mesh, double spacing) {
+  bw::sample::SampleOptions options;
+  options.spacing = spacing;
+  options.volume = true;
+  options.source = "test mesh";
+  return bw::sample::sample_mesh(mesh, options);
+}
+
+// Relative error of the voxel volume at 10, 20, 40 and 80 voxels across the
+// mesh's largest extent. Returns the errors in that order.
+std::vector<double> convergence(const bw::TriMesh& mesh, double exact_volume, const std::string& name) {
+  const double extent = mesh.bounds().extent().maxCoeff();
+  std::vector<double> errors;
+  for (int across : {10, 20, 40, 80}) {
+    const auto solid = sample_volume(mesh, extent / across);
+    const double error = (solid.voxel_volume() - exact_volume) / exact_volume;
+    bw::test::figure(name + " voxel volume error at " + std::to_string(across) + " voxels across", 100 * error, "%");
+    errors.push_back(std::fabs(error));
+  }
+  return errors;
+}
+
+void expect_converges(const std::vector<double>& errors) {
+  EXPECT_LT(errors[2], 0.03) << "within 3% at 40 voxels across";
+  // 10 voxels across is too coarse to rank (errors there depend on luck).
+  EXPECT_LT(errors[3], errors[1]) << "finer is better";
+  EXPECT_LT(errors[3], 0.015);
+}
+
+TEST(VolumeSampling, SphereConverges) {
+  const double r = 0.5;
+  // Level 6 is fine enough that the mesh's own faceting (< 0.05%) is negligible.
+  const auto mesh = bw::mesh::icosphere({0.123, -0.456, 0.789}, r, 6);
+  expect_converges(convergence(mesh, bw::mesh::mass_properties(mesh).volume, "sphere"));
+  EXPECT_NEAR(bw::mesh::mass_properties(mesh).volume / (4.0 / 3.0 * kPi * r * r * r), 1.0, 1e-3);
+}
+
+TEST(VolumeSampling, RotatedCubeConverges) {
+  auto mesh = bw::mesh::box({-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5});
+  const bw::Mat3d rot = Eigen::AngleAxisd(0.4, Vec3d(1, 2, 3).normalized()).toRotationMatrix();
+  bw::mesh::transform(mesh, rot, Vec3d(0.01, 0.02, 0.03));
+  expect_converges(convergence(mesh, 1.0, "rotated cube"));
+}
+
+TEST(VolumeSampling, TorusConverges) {
+  const double R = 0.6, r = 0.2;
+  const auto mesh = bw::mesh::torus({0, 0, 0}, R, r, 256, 128);
+  expect_converges(convergence(mesh, bw::mesh::mass_properties(mesh).volume, "torus"));
+}
+
+// A cube whose faces lie on cell planes and whose (subdivided) edges and vertices
+// project exactly onto the rays through cell centres: an inside test that counts a
+// ray through an edge twice, or not at all, gets stripes of wrong voxels.
+TEST(VolumeSampling, FacesOnCellPlanesAreExact) {
+  const auto cube = bw::mesh::box({0, 0, 0}, {1, 1, 1}, 8);
+  const auto solid = sample_volume(cube, 0.125);
+  EXPECT_EQ(solid.grid.dims, (bw::CellIndex{8, 8, 8}));
+  EXPECT_EQ(solid.voxels.size(), 512u);
+  // The surface cells are exactly the outer shell.
+  EXPECT_EQ(solid.surface.size(), 512u - 216u);
+  for (const auto& c : solid.surface) {
+    const bool shell = c[0] == 0 || c[0] == 7 || c[1] == 0 || c[1] == 7 || c[2] == 0 || c[2] == 7;
+    EXPECT_TRUE(shell);
+  }
+}
+
+// The same cube with the grid shifted by half a cell, so that the faces pass
+// through the cell centres themselves. The symbolic perturbation makes the inside
+// test half-open: every centre of [0, 1)^3 is inside, none else.
+TEST(VolumeSampling, FacesThroughCellCentresAreHalfOpen) {
+  auto mesh = bw::mesh::box({0, 0, 0}, {1, 1, 1}, 8);
+  // A tiny tetrahedron moves the bounding box (and so the grid origin) by -1/16.
+  const double s = -1.0 / 16;
+  bw::TriMesh tet;
+  tet.vertices = {{s, s, s}, {s + 0.01, s, s}, {s, s + 0.01, s}, {s, s, s + 0.01}};
+  tet.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  bw::mesh::append(mesh, tet);
+  const auto solid = sample_volume(mesh, 0.125);
+  EXPECT_EQ(solid.grid.origin, Vec3d(s, s, s));
+  std::size_t in_cube = 0;
+  for (const auto& c : solid.voxels) {
+    const Vec3d p = solid.grid.cell_center(c);
+    const bool inside = p.minCoeff() >= 0 && p.maxCoeff() < 1;
+    EXPECT_TRUE(inside) << p.transpose();
+    in_cube += inside;
+  }
+  EXPECT_EQ(in_cube, 512u);
+}
+
+TEST(VolumeSampling, InsideOutMeshGivesTheSameVoxelsAndIsStoredFlipped) {
+  auto mesh = bw::mesh::torus({0, 0, 0}, 0.6, 0.2, 64, 32);
+  const auto right = sample_volume(mesh, 0.03);
+  bw::mesh::flip_faces(mesh);
+  bw::sample::SampleOptions options;
+  options.spacing = 0.03;
+  options.volume = true;
+  bw::sample::SampleReport report;
+  const auto flipped = bw::sample::sample_mesh(mesh, options, &report);
+  EXPECT_TRUE(report.flipped);
+  EXPECT_EQ(right.voxels, flipped.voxels);
+  EXPECT_GT(bw::mesh::mass_properties(flipped.mesh).volume, 0);
+}
+
+TEST(VolumeSampling, TorusHoleIsEmpty) {
+  const auto solid = sample_volume(bw::mesh::torus({0, 0, 0}, 0.6, 0.2, 64, 32), 0.02);
+  for (const auto& c : solid.voxels) {
+    const Vec3d p = solid.grid.cell_center(c);
+    EXPECT_GT(std::hypot(p.x(), p.y()), 0.6 - 0.2 - 0.02);
+  }
+}
+
+template <class F>
+std::string input_error(F&& f) {
+  try {
+    f();
+  } catch (const bw::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(VolumeSampling, RefusesOpenMeshesAndHugeOutputs) {
+  auto open = bw::mesh::box({0, 0, 0}, {1, 1, 1});
+  open.triangles.pop_back();
+  const std::string open_error = input_error([&] { sample_volume(open, 0.1); });
+  EXPECT_NE(open_error.find("3 boundary edges"), std::string::npos) << open_error;
+  EXPECT_NE(open_error.find("test mesh"), std::string::npos) << open_error;
+
+  const auto cube = bw::mesh::box({0, 0, 0}, {1, 1, 1});
+  const std::string huge = input_error([&] { sample_volume(cube, 1e-5); });
+  EXPECT_NE(huge.find("would need"), std::string::npos) << huge;
+  EXPECT_NE(huge.find("available"), std::string::npos) << huge;
+
+  const std::string bad_spacing = input_error([&] { sample_volume(cube, -1); });
+  EXPECT_NE(bad_spacing.find("spacing"), std::string::npos) << bad_spacing;
+}
+
+}  // namespace
