@@ -86,6 +86,9 @@ struct BadInput {
   std::string expected;   // a part of the message
 };
 
+// Test names and failure messages show the case's name, not its bytes.
+void PrintTo(const BadInput& input, std::ostream* os) { *os << input.name; }
+
 class BwSampleBadInput : public ::testing::TestWithParam<BadInput> {};
 
 TEST_P(BwSampleBadInput, OneLineExitTwoNoOutput) {
