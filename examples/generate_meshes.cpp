@@ -43,6 +43,29 @@ int main(int argc, char** argv) {
     mesh::export_mesh(mesh::box({0, -0.5, 0}, {0.06, 0.5, 0.8}), dir + "/plate.obj");
     // Scene 4: a house, 1 m x 1.2 m, walls 0.8 m, roof ridge 1.2 m.
     mesh::export_mesh(house(1.0, 1.2, 0.8, 0.4), dir + "/house.obj");
+    // A floor slab, 6 m x 4 m, its top at z = 0.
+    mesh::export_mesh(mesh::box({-1, -2, -0.1}, {5, 2, 0}), dir + "/ground.obj");
+    // A tank for dam breaks and floating bodies: cavity 0.6 x 0.15 x 0.4 m, walls 3 cm.
+    mesh::export_mesh(mesh::open_box({0, 0, 0}, {0.6, 0.15, 0.4}, 0.03), dir + "/tank.obj");
+    // A crate, 0.1 m cube, for the floating-body scene.
+    mesh::export_mesh(mesh::box({0, 0, 0}, {0.1, 0.1, 0.1}), dir + "/crate.obj");
+    // Scene 3: a valley 8 m long falling 0.12 m per metre along x, with parabolic
+    // sides rising 0.8 m over 1.5 m; its floor is 1.2 m high at x = 0.
+    mesh::export_mesh(mesh::heightfield({0, -1.5}, {8, 1.5}, 64, 24, -0.2,
+                                        [](double x, double y) { return 1.2 - 0.12 * x + 0.8 * (y / 1.5) * (y / 1.5); }),
+                      dir + "/valley.obj");
+    // Scene 3: a gravity dam across the valley at x = 5: trapezoidal section, 0.5 m
+    // at the base, 0.15 m at the crest, from z = 0.4 (inside the terrain) to 1.7 m.
+    {
+      bw::TriMesh dam = mesh::extrude({{0, 0}, {0.5, 0}, {0.15, 1.3}, {0, 1.3}}, -1.5, 1.5);
+      bw::Mat3d r;
+      r << 1, 0, 0,  //
+          0, 0, 1,   //
+          0, 1, 0;   // (u, v, w) -> (u, w, v): section in xz, extruded along y
+      mesh::transform(dam, r, Vec3d(4.8, 0, 0.4));
+      for (auto& t : dam.triangles) std::swap(t[1], t[2]);  // the swap of axes mirrors
+      mesh::export_mesh(dam, dir + "/dam.obj");
+    }
   } catch (const bw::Error& e) {
     std::fprintf(stderr, "bw-example-meshes: %s\n", e.what());
     return e.exit_code();

@@ -174,6 +174,71 @@ TriMesh extrude(const std::vector<Eigen::Vector2d>& polygon, double z0, double z
   return mesh;
 }
 
+TriMesh open_box(const Vec3d& inner_min, const Vec3d& inner_max, double wall) {
+  if (!(wall > 0) || (inner_max.array() <= inner_min.array()).any()) {
+    fail_input("open_box: needs inner_min < inner_max and a positive wall thickness");
+  }
+  const Vec3d outer_min = inner_min - Vec3d(wall, wall, wall);
+  const Vec3d outer_max(inner_max.x() + wall, inner_max.y() + wall, inner_max.z());
+  TriMesh mesh;
+  // Corners 0..3 at the bottom, 4..7 at the top, counter-clockwise seen from above.
+  auto corners = [&](const Vec3d& lo, const Vec3d& hi) {
+    const auto base = static_cast<std::int32_t>(mesh.vertices.size());
+    for (double z : {lo.z(), hi.z()}) {
+      mesh.vertices.emplace_back(lo.x(), lo.y(), z);
+      mesh.vertices.emplace_back(hi.x(), lo.y(), z);
+      mesh.vertices.emplace_back(hi.x(), hi.y(), z);
+      mesh.vertices.emplace_back(lo.x(), hi.y(), z);
+    }
+    return base;
+  };
+  const std::int32_t o = corners(outer_min, outer_max);
+  const std::int32_t i = corners(inner_min, inner_max);
+  // Outer shell: bottom facing down, sides facing out.
+  add_quad(mesh, o + 0, o + 3, o + 2, o + 1);
+  for (int k = 0; k < 4; ++k) add_quad(mesh, o + k, o + (k + 1) % 4, o + 4 + (k + 1) % 4, o + 4 + k);
+  // Rim between the outer and inner top edges, facing up.
+  for (int k = 0; k < 4; ++k) add_quad(mesh, o + 4 + k, o + 4 + (k + 1) % 4, i + 4 + (k + 1) % 4, i + 4 + k);
+  // Inner shell: faces point into the cavity (away from the solid).
+  add_quad(mesh, i + 0, i + 1, i + 2, i + 3);
+  for (int k = 0; k < 4; ++k) add_quad(mesh, i + k, i + 4 + k, i + 4 + (k + 1) % 4, i + (k + 1) % 4);
+  return mesh;
+}
+
+TriMesh heightfield(const Eigen::Vector2d& min_xy, const Eigen::Vector2d& max_xy, int nx, int ny, double z_bottom,
+                    const std::function<double(double, double)>& height) {
+  if (nx < 1 || ny < 1) fail_input("heightfield: needs at least one quad along x and y");
+  TriMesh mesh;
+  auto x_at = [&](int i) { return i == nx ? max_xy.x() : min_xy.x() + (max_xy.x() - min_xy.x()) * i / nx; };
+  auto y_at = [&](int j) { return j == ny ? max_xy.y() : min_xy.y() + (max_xy.y() - min_xy.y()) * j / ny; };
+  auto top = [&](int i, int j) { return static_cast<std::int32_t>(j * (nx + 1) + i); };
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      const double z = height(x_at(i), y_at(j));
+      if (!(z > z_bottom)) fail_input("heightfield: height {} at ({}, {}) is not above the bottom {}", z, x_at(i), y_at(j), z_bottom);
+      mesh.vertices.emplace_back(x_at(i), y_at(j), z);
+    }
+  const auto bottom_base = static_cast<std::int32_t>(mesh.vertices.size());
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) mesh.vertices.emplace_back(x_at(i), y_at(j), z_bottom);
+  auto bottom = [&](int i, int j) { return bottom_base + top(i, j); };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      add_quad(mesh, top(i, j), top(i + 1, j), top(i + 1, j + 1), top(i, j + 1));
+      add_quad(mesh, bottom(i, j), bottom(i, j + 1), bottom(i + 1, j + 1), bottom(i + 1, j));
+    }
+  // Sides: each boundary edge of the top joined to the bottom, facing out.
+  for (int i = 0; i < nx; ++i) {
+    add_quad(mesh, bottom(i, 0), bottom(i + 1, 0), top(i + 1, 0), top(i, 0));
+    add_quad(mesh, bottom(i + 1, ny), bottom(i, ny), top(i, ny), top(i + 1, ny));
+  }
+  for (int j = 0; j < ny; ++j) {
+    add_quad(mesh, bottom(nx, j), bottom(nx, j + 1), top(nx, j + 1), top(nx, j));
+    add_quad(mesh, bottom(0, j + 1), bottom(0, j), top(0, j), top(0, j + 1));
+  }
+  return mesh;
+}
+
 void transform(TriMesh& mesh, const Mat3d& rotation, const Vec3d& translation) {
   for (Vec3d& v : mesh.vertices) v = rotation * v + translation;
 }

@@ -2,6 +2,7 @@
 // example scenes.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "common/geometry.h"
@@ -20,6 +21,15 @@ TriMesh cylinder(const Vec3d& base_center, double radius, double height, int seg
 // self-intersections) extruded along z from z0 to z1. An L-shape, a house with a
 // gable roof (polygon in a vertical plane, then rotated), a dam cross-section.
 TriMesh extrude(const std::vector<Eigen::Vector2d>& polygon, double z0, double z1);
+// An open-topped tank: the solid between the box [inner_min, inner_max] (open at the
+// top face z = inner_max.z) and that box grown by `wall` on every side but the top.
+// One closed, outward-oriented surface: outer faces, rim, inner faces.
+TriMesh open_box(const Vec3d& inner_min, const Vec3d& inner_max, double wall);
+// A terrain block: the top surface z = height(x, y) sampled on nx x ny quads over
+// [min_xy, max_xy], closed by four vertical sides and a flat bottom at z_bottom
+// (which must lie below every height).
+TriMesh heightfield(const Eigen::Vector2d& min_xy, const Eigen::Vector2d& max_xy, int nx, int ny, double z_bottom,
+                    const std::function<double(double, double)>& height);
 // Applies x -> rotation * x + translation to every vertex.
 void transform(TriMesh& mesh, const Mat3d& rotation, const Vec3d& translation);
 // Appends the faces of `other` (disjoint union).

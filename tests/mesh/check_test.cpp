@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "mesh/check.h"
+#include "mesh/properties.h"
 #include "mesh/shapes.h"
 
 namespace {
@@ -71,6 +72,25 @@ TEST(MeshCheck, CountsComponents) {
   const auto report = check_mesh(mesh);
   EXPECT_EQ(report.components, 3u);
   EXPECT_TRUE(report.bounds_volume());
+}
+
+}  // namespace
+
+namespace {
+
+TEST(Shapes, OpenBoxAndHeightfieldBoundTheirVolumes) {
+  const auto tank = bw::mesh::open_box({0, 0, 0}, {2, 1, 1}, 0.1);
+  const auto report = bw::mesh::check_mesh(tank);
+  EXPECT_TRUE(report.bounds_volume()) << report.summary();
+  // Outer 2.2 x 1.2 x 1.1 minus the 2 x 1 x 1 cavity.
+  EXPECT_NEAR(bw::mesh::mass_properties(tank).volume, 2.2 * 1.2 * 1.1 - 2.0, 1e-12);
+
+  const auto terrain = bw::mesh::heightfield({0, 0}, {2, 1}, 20, 10, -1,
+                                             [](double x, double y) { return 0.5 + 0.25 * x + 0.1 * y * y; });
+  EXPECT_TRUE(bw::mesh::check_mesh(terrain).bounds_volume());
+  // Integral of (1.5 + x/4 + y^2/10) over [0,2] x [0,1]; the top is bilinear per
+  // quad split into triangles, so y^2 is approximated: within 1e-3.
+  EXPECT_NEAR(bw::mesh::mass_properties(terrain).volume, 3.0 + 0.5 + 2.0 / 30, 1e-3);
 }
 
 }  // namespace
