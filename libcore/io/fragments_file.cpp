@@ -1,6 +1,7 @@
 #include "io/fragments_file.h"
 
 #include "common/error.h"
+#include "io/arrays.h"
 #include "io/h5.h"
 
 namespace bw {
@@ -26,15 +27,13 @@ void write_fragments(const FragmentSet& set, const std::string& path) {
     body.push_back(f.body);
     volume.push_back(f.volume);
   }
-  std::vector<double> seeds;
-  for (const Vec3d& s : set.seeds) seeds.insert(seeds.end(), {s.x(), s.y(), s.z()});
 
   h5::File file = h5::File::create(path, kKind);
   h5::Group& root = file.root();
   root.set_attr("source", set.source);
   root.write<double>("vertices", vertices, {vertices.size() / 3, 3});
   root.write<std::int32_t>("triangles", triangles, {triangles.size() / 3, 3});
-  root.write<double>("seeds", seeds, {set.seeds.size(), 3});
+  root.write<double>("seeds", io::flatten(set.seeds), {set.seeds.size(), 3});
   h5::Group fragment = root.create_group("fragment");
   fragment.write("vertex_offset", vertex_offset);
   fragment.write("triangle_offset", triangle_offset);
@@ -54,7 +53,7 @@ FragmentSet read_fragments(const std::string& path) {
   const auto vertices = root.read_rows<double>("vertices", 3, &nv);
   const auto triangles = root.read_rows<std::int32_t>("triangles", 3, &nt);
   const auto seeds = root.read_rows<double>("seeds", 3, &ns);
-  for (std::size_t i = 0; i < ns; ++i) set.seeds.emplace_back(seeds[3 * i], seeds[3 * i + 1], seeds[3 * i + 2]);
+  set.seeds = io::unflatten_points(seeds);
   const h5::Group g = root.open_group("fragment");
   const auto vertex_offset = g.read_rows<std::int64_t>("vertex_offset", 0, &rows);
   const auto triangle_offset = g.read_rows<std::int64_t>("triangle_offset", 0, &rows);

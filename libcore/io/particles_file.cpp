@@ -3,26 +3,13 @@
 #include <cmath>
 
 #include "common/error.h"
+#include "io/arrays.h"
 #include "io/h5.h"
 
 namespace bw {
 namespace {
 
 constexpr const char* kKind = "particles";
-
-std::vector<std::int32_t> flatten(const std::vector<CellIndex>& cells) {
-  std::vector<std::int32_t> flat(cells.size() * 3);
-  for (std::size_t i = 0; i < cells.size(); ++i)
-    for (int k = 0; k < 3; ++k) flat[3 * i + k] = cells[i][k];
-  return flat;
-}
-
-std::vector<double> flatten(const std::vector<Vec3d>& points) {
-  std::vector<double> flat(points.size() * 3);
-  for (std::size_t i = 0; i < points.size(); ++i)
-    for (int k = 0; k < 3; ++k) flat[3 * i + k] = points[i][k];
-  return flat;
-}
 
 std::vector<CellIndex> read_cells(const h5::Group& group, const char* name, const SampleGrid& grid) {
   std::size_t rows = 0;
@@ -68,21 +55,18 @@ void write_particles(const SampledSolid& solid, const std::string& path, const s
 
   h5::Group surface = root.create_group("surface");
   const std::uint64_t n = solid.surface.size();
-  surface.write<std::int32_t>("cell", flatten(solid.surface), {n, 3});
-  surface.write<double>("position", flatten(solid.surface_positions()), {n, 3});
+  surface.write<std::int32_t>("cell", io::flatten(solid.surface), {n, 3});
+  surface.write<double>("position", io::flatten(solid.surface_positions()), {n, 3});
 
   if (solid.has_voxels) {
     h5::Group voxels = root.create_group("voxels");
-    voxels.write<std::int32_t>("cell", flatten(solid.voxels), {solid.voxels.size(), 3});
+    voxels.write<std::int32_t>("cell", io::flatten(solid.voxels), {solid.voxels.size(), 3});
     voxels.set_attr("volume", solid.voxel_volume());
   }
 
   h5::Group mesh = root.create_group("mesh");
-  mesh.write<double>("vertices", flatten(solid.mesh.vertices), {solid.mesh.vertices.size(), 3});
-  std::vector<std::int32_t> triangles(solid.mesh.triangles.size() * 3);
-  for (std::size_t i = 0; i < solid.mesh.triangles.size(); ++i)
-    for (int k = 0; k < 3; ++k) triangles[3 * i + k] = solid.mesh.triangles[i][k];
-  mesh.write<std::int32_t>("triangles", triangles, {solid.mesh.triangles.size(), 3});
+  mesh.write<double>("vertices", io::flatten(solid.mesh.vertices), {solid.mesh.vertices.size(), 3});
+  mesh.write<std::int32_t>("triangles", io::flatten(solid.mesh.triangles), {solid.mesh.triangles.size(), 3});
   file.commit();
 }
 
@@ -111,8 +95,7 @@ SampledSolid read_particles(const std::string& path) {
   std::size_t nv = 0, nf = 0;
   const std::vector<double> vertices = mesh.read_rows<double>("vertices", 3, &nv);
   const std::vector<std::int32_t> triangles = mesh.read_rows<std::int32_t>("triangles", 3, &nf);
-  solid.mesh.vertices.resize(nv);
-  for (std::size_t i = 0; i < nv; ++i) solid.mesh.vertices[i] = Vec3d(vertices[3 * i], vertices[3 * i + 1], vertices[3 * i + 2]);
+  solid.mesh.vertices = io::unflatten_points(vertices);
   solid.mesh.triangles.resize(nf);
   for (std::size_t i = 0; i < nf; ++i) {
     for (int k = 0; k < 3; ++k) {

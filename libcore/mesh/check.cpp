@@ -1,26 +1,13 @@
 #include "mesh/check.h"
 
 #include <algorithm>
-#include <numeric>
 
 #include <fmt/format.h>
 
+#include "common/union_find.h"
+
 namespace bw::mesh {
 namespace {
-
-struct UnionFind {
-  std::vector<std::int32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  std::int32_t find(std::int32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::int32_t a, std::int32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 struct HalfEdge {
   std::uint64_t key;     // (min index << 32) | max index
