@@ -1,0 +1,87 @@
+#include "analysis/measure.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <regex>
+
+#include "common/error.h"
+
+namespace bw::analysis {
+namespace fs = std::filesystem;
+
+std::vector<std::string> list_frames(const std::string& folder) {
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) fail_input("{}: not a folder of frames", folder);
+  static const std::regex frame_name(R"(\d{6}\.h5)");
+  std::vector<std::string> frames;
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_regular_file() && std::regex_match(name, frame_name)) frames.push_back(entry.path().string());
+  }
+  if (frames.empty()) fail_input("{}: holds no frame files (NNNNNN.h5)", folder);
+  std::sort(frames.begin(), frames.end());
+  return frames;
+}
+
+Field parse_field(const std::string& name) {
+  if (name == "p" || name == "pressure") return Field::pressure;
+  if (name == "rho" || name == "density") return Field::density;
+  if (name == "speed") return Field::speed;
+  if (name == "vx") return Field::vx;
+  if (name == "vy") return Field::vy;
+  if (name == "vz") return Field::vz;
+  fail_input("field '{}': expected p, rho, speed, vx, vy or vz", name);
+}
+
+const char* field_name(Field field) {
+  switch (field) {
+    case Field::pressure: return "p";
+    case Field::density: return "rho";
+    case Field::speed: return "speed";
+    case Field::vx: return "vx";
+    case Field::vy: return "vy";
+    case Field::vz: return "vz";
+  }
+  return "?";
+}
+
+double probe(const FrameData& frame, Field field, const Vec3d& point, double h) {
+  const bool needs_velocity = field == Field::speed || field == Field::vx || field == Field::vy || field == Field::vz;
+  if ((field == Field::pressure && frame.p.empty()) || (field == Field::density && frame.rho.empty()) ||
+      (needs_velocity && frame.vx.empty())) {
+    fail_input("frame {}: holds no '{}' field; add it to the scene's [output] fields", frame.frame, field_name(field));
+  }
+  const double h2 = h * h;
+  double weighted = 0, weights = 0;
+  for (std::size_t i = 0; i < frame.x.size(); ++i) {
+    const Vec3d d(frame.x[i] - point.x(), frame.y[i] - point.y(), frame.z[i] - point.z());
+    const double r2 = d.squaredNorm();
+    if (r2 >= h2) continue;
+    const double w = (h2 - r2) * (h2 - r2) * (h2 - r2);  // poly6 up to its constant
+    double value = 0;
+    switch (field) {
+      case Field::pressure: value = frame.p[i]; break;
+      case Field::density: value = frame.rho[i]; break;
+      case Field::speed: value = std::sqrt(double(frame.vx[i]) * frame.vx[i] + double(frame.vy[i]) * frame.vy[i] + double(frame.vz[i]) * frame.vz[i]); break;
+      case Field::vx: value = frame.vx[i]; break;
+      case Field::vy: value = frame.vy[i]; break;
+      case Field::vz: value = frame.vz[i]; break;
+    }
+    weighted += w * value;
+    weights += w;
+  }
+  return weights > 0 ? weighted / weights : std::numeric_limits<double>::quiet_NaN();
+}
+
+double surface_elevation(const FrameData& frame, double x, double y, double radius) {
+  double top = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < frame.x.size(); ++i) {
+    const double dx = frame.x[i] - x, dy = frame.y[i] - y;
+    if (dx * dx + dy * dy <= radius * radius) top = std::max(top, double(frame.z[i]));
+  }
+  return std::isfinite(top) ? top : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace bw::analysis

@@ -1,0 +1,109 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "analysis/dambreak.h"
+#include "analysis/measure.h"
+#include "common/error.h"
+#include "test_support.h"
+
+namespace {
+
+using bw::FrameData;
+namespace an = bw::analysis;
+
+// A block of particles on a lattice filling [lo, hi].
+FrameData block(const bw::Vec3d& lo, const bw::Vec3d& hi, double spacing, double time) {
+  FrameData f;
+  f.time = time;
+  for (double z = lo.z() + spacing / 2; z < hi.z(); z += spacing)
+    for (double y = lo.y() + spacing / 2; y < hi.y(); y += spacing)
+      for (double x = lo.x() + spacing / 2; x < hi.x(); x += spacing) {
+        f.x.push_back(static_cast<float>(x));
+        f.y.push_back(static_cast<float>(y));
+        f.z.push_back(static_cast<float>(z));
+      }
+  return f;
+}
+
+TEST(DamBreak, MeasuresFrontAndResidualOfABlock) {
+  const FrameData f = block({0, 0, 0}, {0.3, 0.1, 0.12}, 0.01, 0.25);
+  const an::DamBreakSetup setup{.column_width = 0.1, .wall = 0, .floor = 0, .band = 0.02};
+  const auto s = an::measure_dambreak(f, setup);
+  EXPECT_NEAR(s.front, 0.295, 1e-6);
+  EXPECT_NEAR(s.residual, 0.115, 1e-6);
+  EXPECT_EQ(s.time, 0.25);
+}
+
+// A synthetic run that follows the experiment exactly compares with zero error; a
+// run 10 % too fast shows an error of the right size.
+TEST(DamBreak, ComparisonAgainstTheReference) {
+  const auto ref = an::read_dambreak_reference(std::string(BW_SOURCE_DIR) + "/examples/data/martin-moyce-1952.csv");
+  ASSERT_EQ(ref.front.size(), 15u);
+  ASSERT_EQ(ref.residual.size(), 17u);
+  const an::DamBreakSetup setup{.column_width = 0.05715, .wall = 0, .floor = 0, .band = 0.005};
+  const double a = setup.column_width, g = setup.gravity;
+  // Front and residual sampled on the experimental times of each series.
+  auto run_with = [&](double front_factor) {
+    std::vector<an::DamBreakSample> samples;
+    for (std::size_t i = 0; i < ref.front.size(); ++i) {
+      an::DamBreakSample s;
+      s.time = ref.front[i].T / std::sqrt(2 * g / a);
+      s.front = front_factor * ref.front[i].value * a;
+      // Residual at the same time, from the residual series (piecewise linear).
+      const double T = s.time * std::sqrt(g / a);
+      double H = ref.residual.front().value;
+      for (std::size_t k = 1; k < ref.residual.size(); ++k)
+        if (ref.residual[k].T >= T) {
+          const auto& p = ref.residual[k - 1];
+          const auto& q = ref.residual[k];
+          H = T <= p.T ? p.value : p.value + (q.value - p.value) * (T - p.T) / (q.T - p.T);
+          break;
+        }
+      s.residual = H * 2 * a;
+      samples.push_back(s);
+    }
+    return an::compare_dambreak(samples, setup, ref);
+  };
+  const auto exact = run_with(1.0);
+  EXPECT_LT(exact.front.rms, 1e-12);
+  EXPECT_EQ(exact.front.points, 15);
+  EXPECT_GT(exact.residual.points, 5);
+  EXPECT_GT(exact.residual.skipped, 0) << "the run ends before the last residual points";
+  const auto fast = run_with(1.1);
+  // 10 % of Z, whose RMS over the series is about 2.5.
+  EXPECT_NEAR(fast.front.rms, 0.1 * 2.6, 0.05);
+}
+
+TEST(Probe, AveragesAFieldAndGaugesTheSurface) {
+  FrameData f = block({0, 0, 0}, {0.2, 0.2, 0.1}, 0.01, 0);
+  for (float z : f.z) f.p.push_back(1000.0f * 9.81f * (0.1f - z));  // hydrostatic
+  const double p = an::probe(f, an::Field::pressure, {0.1, 0.1, 0.05}, 0.02);
+  EXPECT_NEAR(p, 1000 * 9.81 * 0.05, 5.0);
+  EXPECT_TRUE(std::isnan(an::probe(f, an::Field::pressure, {1, 1, 1}, 0.02)));
+  EXPECT_NEAR(an::surface_elevation(f, 0.1, 0.1, 0.01), 0.095, 1e-6);
+  EXPECT_THROW(an::probe(f, an::Field::density, {0.1, 0.1, 0.05}, 0.02), bw::InputError);
+}
+
+TEST(BwMeasure, DambreakThroughTheTool) {
+  bw::test::TempDir dir;
+  for (int k = 0; k < 3; ++k) {
+    FrameData f = block({0, 0, 0}, {0.1 + 0.05 * k, 0.05, 0.2 - 0.03 * k}, 0.01, 0.05 * k);
+    f.frame = k;
+    bw::write_frame(f, bw::frame_file_name(dir.path(), k));
+  }
+  const std::string tool = bw::test::tool("bw-measure");
+  const auto csv = bw::test::run(tool + " dambreak " + dir.path() + " --width 0.1 --band 0.02");
+  ASSERT_EQ(csv.exit_code, 0) << csv.err;
+  EXPECT_EQ(bw::test::line_count(csv.out), 4) << csv.out;
+  EXPECT_EQ(csv.out.rfind("time,front,residual", 0), 0u) << csv.out;
+  const auto json = bw::test::run(tool + " dambreak " + dir.path() + " --width 0.1 --band 0.02 --json --reference " +
+                                  BW_SOURCE_DIR + "/examples/data/martin-moyce-1952.csv");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_NE(json.out.find("\"rms\""), std::string::npos) << json.out;
+  const auto missing = bw::test::run(tool + " dambreak " + dir.file("nothere") + " --width 0.1 --band 0.02");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_EQ(bw::test::line_count(missing.err), 1) << missing.err;
+}
+
+}  // namespace
