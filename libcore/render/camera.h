@@ -1,0 +1,28 @@
+// Camera math of the renderer: OpenGL conventions (right-handed view space looking
+// down -z, clip space z in [-1, 1]), column vectors, matrices as Eigen 4x4 doubles.
+#pragma once
+
+#include "common/geometry.h"
+#include "render/render_settings.h"
+
+namespace bw::render {
+
+using Mat4d = Eigen::Matrix4d;
+
+// World to view space.
+Mat4d look_at(const Vec3d& position, const Vec3d& target, const Vec3d& up);
+// Perspective projection; fov is vertical, in degrees; near, far > 0.
+Mat4d perspective(double fov_degrees, double aspect, double near, double far);
+// Orthographic projection of the box [l, r] x [b, t] x [-far, -near] of view space.
+Mat4d orthographic(double l, double r, double b, double t, double near, double far);
+
+// A camera that sees the whole box from the front-left and above (azimuth kFitAzimuth,
+// elevation kFitElevation, see camera.cpp), with the box's bounding sphere inside the
+// field of view. An empty box gives the default camera.
+Camera fit_camera(const Aabb& box, double fov_degrees, double aspect);
+
+// Near and far planes that hold the box as seen from the camera, with a floor on near
+// so that depth precision stays usable.
+void clip_planes(const Camera& camera, const Aabb& box, double& near, double& far);
+
+}  // namespace bw::render

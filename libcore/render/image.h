@@ -1,0 +1,26 @@
+// An 8-bit RGB image and its PNG file (libpng, written through a temporary file).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace bw::render {
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  // width * height * 3 bytes, rows from the top, RGB.
+  std::vector<std::uint8_t> rgb;
+
+  const std::uint8_t* pixel(int x, int y) const { return &rgb[3 * (static_cast<std::size_t>(y) * width + x)]; }
+};
+
+// PNG bytes of the image (deterministic: no time stamps, fixed compression level).
+std::vector<std::uint8_t> encode_png(const Image& image);
+// Writes the image through a temporary file renamed into place.
+void write_png(const Image& image, const std::string& path);
+// Reads an 8-bit RGB or RGBA PNG (alpha dropped). Throws InputError.
+Image read_png(const std::string& path);
+
+}  // namespace bw::render

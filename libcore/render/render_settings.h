@@ -1,0 +1,100 @@
+// What bw-render draws with: camera, light and the look of water, solids and ground.
+//
+// The scene file (TOML) may hold the tables [camera], [light] and [render]; this is
+// the only code that reads them (the simulator's scene parser ignores them, and this
+// parser ignores every other table). Unknown keys inside the three tables are errors
+// naming the key's path. docs/rendering.md documents every key.
+//
+// Units: metres, degrees for angles, colours as linear RGB in [0, 1], absorption in
+// 1/m. Scenes are z-up.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "common/geometry.h"
+
+namespace bw::render {
+
+struct Camera {
+  Vec3d position = Vec3d(0, -4, 1.5);
+  Vec3d target = Vec3d(0, 0, 0.5);
+  Vec3d up = Vec3d(0, 0, 1);
+  double fov_degrees = 45;   // vertical field of view
+};
+
+struct Light {
+  // Direction in which the sun's light travels (from the sun into the scene).
+  Vec3d direction = Vec3d(0.45, 0.6, -1.0);
+  Vec3d color = Vec3d(1.0, 0.96, 0.9);
+  double intensity = 2.6;    // sun radiance scale
+  double ambient = 0.55;     // sky light on surfaces facing up
+  bool shadows = true;       // solids and water cast shadows on the ground and solids
+};
+
+enum class Filter { kNarrowRange, kBilateral, kNone };
+
+// "narrow-range", "bilateral", "none"; std::nullopt for anything else.
+std::optional<Filter> parse_filter(const std::string& name);
+const char* filter_name(Filter filter);
+
+// What the image shows: the shaded picture or one of the intermediate layers of the
+// fluid (for inspecting the smoothing).
+enum class View { kShaded, kDepth, kThickness, kNormals };
+std::optional<View> parse_view(const std::string& name);
+
+struct RenderSettings {
+  int width = 1280;
+  int height = 720;
+
+  // The camera; empty means "frame the scene" (see fit_camera in camera.h).
+  std::optional<Camera> camera;
+  Light light;
+
+  // Particles are drawn as spheres of this radius (m). 0: particle_radius_factor
+  // times the particle spacing estimated from the first frame of the sequence.
+  double particle_radius = 0;
+  double particle_radius_factor = 0.8;
+
+  // Water: Beer-Lambert absorption per metre of thickness (red, green, blue), and the
+  // colour of the light scattered back inside the water.
+  Vec3d fluid_color = Vec3d(0.08, 0.32, 0.42);
+  Vec3d absorption = Vec3d(2.4, 0.75, 0.45);
+  double refraction = 0.35;        // screen-space offset of refracted rays (x thickness^0.5)
+  double specular = 1.0;           // sun glint strength
+
+  // Depth smoothing (method.md 7.3).
+  Filter filter = Filter::kNarrowRange;
+  double filter_radius = 3.0;      // world-space kernel radius in particle radii
+  int filter_max_pixels = 24;      // cap on the kernel radius on screen
+
+  // Sky (background and what water reflects): colour at the zenith and the horizon.
+  Vec3d sky_color = Vec3d(0.23, 0.44, 0.78);
+  Vec3d horizon_color = Vec3d(0.78, 0.86, 0.94);
+
+  // Ground plane z = ground_height (empty: just below the lowest particle or solid of
+  // the first frame), a checkerboard of ground_tile metres.
+  bool ground = true;
+  std::optional<double> ground_height;
+  double ground_tile = 0.25;
+  Vec3d ground_color = Vec3d(0.55, 0.52, 0.47);
+
+  Vec3d solid_color = Vec3d(0.62, 0.6, 0.56);     // static solids
+  Vec3d body_color = Vec3d(0.66, 0.38, 0.27);     // dynamic solids and fragments
+
+  View view = View::kShaded;
+
+  // Throws InputError "<where>: <key>: <problem>" for a value out of range.
+  void validate(const std::string& where = "settings") const;
+};
+
+// Reads [camera], [light] and [render] of a scene file over the defaults. Other tables
+// are ignored. Throws InputError naming the file and the key path ("scene.toml:
+// render.width: ...") for a missing file, a TOML syntax error, an unknown key inside
+// the three tables or a value of the wrong type or out of range.
+RenderSettings load_render_settings(const std::string& scene_path);
+
+// The same from TOML text; `name` is used in messages.
+RenderSettings parse_render_settings(const std::string& toml_text, const std::string& name);
+
+}  // namespace bw::render

@@ -1,0 +1,629 @@
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <set>
+#include <sstream>
+
+#include "bw_render_shaders/embedded.h"
+
+#include "common/error.h"
+#include "render/camera.h"
+#include "render/gl_api.h"
+
+namespace bw::render {
+namespace {
+
+// Side of the sun's shadow maps (texels). Solids are few triangles, so their map can
+// be fine; the water's map is drawn from every particle, so it is coarser.
+constexpr int kSolidShadowSize = 2048;
+constexpr int kFluidShadowSize = 1024;
+// The ground plane spans this many times the scene's size around its centre: far
+// enough that its edge hides in the haze at the horizon.
+constexpr double kGroundExtent = 60.0;
+// Haze: the ground fades to the horizon colour over this many camera distances.
+constexpr double kFogDistances = 6.0;
+// Narrow-range filter: depths farther than this many particle radii from the
+// centre's belong to another layer; samples behind are clamped to the centre's depth
+// plus kClampRatio radii (the paper's threshold and clamp ratios).
+constexpr double kRangeRatio = 5.0;
+constexpr double kClampRatio = 1.0;
+// Bilateral filter: width of the Gaussian on depth differences, in particle radii.
+constexpr double kBilateralRangeRatio = 1.0;
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Mirrors `uniform Frame` of shaders/common.glsl (std140: mat4 and vec4 only).
+struct FrameUniforms {
+  float view[16], proj[16], inv_view[16], light_view[16], light_proj[16];
+  float viewport[4], camera[4], light_dir[4], light_color[4], sky_color[4], horizon_color[4];
+  float ground_color[4], ground[4], fluid_color[4], absorption[4], camera_position[4], filter[4];
+};
+static_assert(sizeof(FrameUniforms) == (5 * 16 + 12 * 4) * sizeof(float), "std140 layout");
+
+void put(float* out, const Mat4d& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) out[4 * c + r] = static_cast<float>(m(r, c));  // column-major
+}
+void put(float* out, const Vec3d& v, double w) {
+  for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(v[k]);
+  out[3] = static_cast<float>(w);
+}
+void put(float* out, double a, double b, double c, double d) {
+  out[0] = static_cast<float>(a), out[1] = static_cast<float>(b), out[2] = static_cast<float>(c),
+  out[3] = static_cast<float>(d);
+}
+
+// Resolves `#include "name"` lines against the embedded files, once per file.
+void expand(const std::string& name, std::string& out, std::set<std::string>& seen) {
+  const std::string_view text = shaders::embedded_file(name);
+  if (text.empty()) fail_run("shader '{}' is not embedded in this executable", name);
+  if (!seen.insert(name).second) return;
+  std::istringstream in{std::string(text)};
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.rfind("#include \"", 0) == 0) {
+      const std::size_t end = line.find('"', 10);
+      expand(line.substr(10, end - 10), out, seen);
+      out += "#line " + std::to_string(number + 1) + "\n";
+    } else {
+      out += line + "\n";
+    }
+  }
+}
+
+GLuint compile(GLenum stage, const std::string& name) {
+  std::string source = "#version 450 core\n";
+  std::set<std::string> seen;
+  expand(name, source, seen);
+  const GLuint shader = gl::CreateShader(stage);
+  const char* text = source.c_str();
+  gl::ShaderSource(shader, 1, &text, nullptr);
+  gl::CompileShader(shader);
+  GLint ok = 0;
+  gl::GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = {};
+    gl::GetShaderInfoLog(shader, sizeof log, nullptr, log);
+    gl::DeleteShader(shader);
+    std::string one_line = log;
+    std::replace(one_line.begin(), one_line.end(), '\n', ' ');
+    fail_run("shader {} does not compile: {}", name, one_line);
+  }
+  return shader;
+}
+
+class Program {
+ public:
+  Program() = default;
+  Program(const std::string& vertex, const std::string& fragment) {
+    const GLuint vs = compile(GL_VERTEX_SHADER, vertex), fs = compile(GL_FRAGMENT_SHADER, fragment);
+    id_ = gl::CreateProgram();
+    gl::AttachShader(id_, vs);
+    gl::AttachShader(id_, fs);
+    gl::LinkProgram(id_);
+    gl::DeleteShader(vs);
+    gl::DeleteShader(fs);
+    GLint ok = 0;
+    gl::GetProgramiv(id_, GL_LINK_STATUS, &ok);
+    if (!ok) {
+      char log[4096] = {};
+      gl::GetProgramInfoLog(id_, sizeof log, nullptr, log);
+      std::string one_line = log;
+      std::replace(one_line.begin(), one_line.end(), '\n', ' ');
+      fail_run("shaders {} + {} do not link: {}", vertex, fragment, one_line);
+    }
+  }
+  Program(Program&& o) noexcept : id_(o.id_) { o.id_ = 0; }
+  Program& operator=(Program&& o) noexcept {
+    std::swap(id_, o.id_);
+    return *this;
+  }
+  ~Program() {
+    if (id_) gl::DeleteProgram(id_);
+  }
+  GLuint id() const { return id_; }
+  void use() const { gl::UseProgram(id_); }
+  void set(const char* name, int value) const { gl::ProgramUniform1i(id_, gl::GetUniformLocation(id_, name), value); }
+
+ private:
+  GLuint id_ = 0;
+};
+
+struct Texture {
+  GLuint id = 0;
+  Texture() = default;
+  Texture(GLenum format, int width, int height, bool linear) {
+    gl::CreateTextures(GL_TEXTURE_2D, 1, &id);
+    gl::TextureStorage2D(id, 1, format, width, height);
+    gl::TextureParameteri(id, GL_TEXTURE_MIN_FILTER, linear ? GL_LINEAR : GL_NEAREST);
+    gl::TextureParameteri(id, GL_TEXTURE_MAG_FILTER, linear ? GL_LINEAR : GL_NEAREST);
+    gl::TextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl::TextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  }
+  Texture(Texture&& o) noexcept : id(o.id) { o.id = 0; }
+  Texture& operator=(Texture&& o) noexcept {
+    std::swap(id, o.id);
+    return *this;
+  }
+  ~Texture() {
+    if (id) gl::DeleteTextures(1, &id);
+  }
+};
+
+struct Framebuffer {
+  GLuint id = 0;
+  Framebuffer() = default;
+  Framebuffer(std::initializer_list<GLuint> colors, GLuint depth, const char* what) {
+    gl::CreateFramebuffers(1, &id);
+    std::vector<GLenum> buffers;
+    for (GLuint c : colors) {
+      const GLenum attachment = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(buffers.size());
+      gl::NamedFramebufferTexture(id, attachment, c, 0);
+      buffers.push_back(attachment);
+    }
+    if (depth) gl::NamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, depth, 0);
+    if (buffers.empty()) {
+      const GLenum none = GL_NONE;
+      gl::NamedFramebufferDrawBuffers(id, 1, &none);
+      gl::NamedFramebufferReadBuffer(id, GL_NONE);
+    } else {
+      gl::NamedFramebufferDrawBuffers(id, static_cast<GLsizei>(buffers.size()), buffers.data());
+    }
+    const GLenum status = gl::CheckNamedFramebufferStatus(id, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) fail_run("the {} framebuffer is incomplete (0x{:x})", what, status);
+  }
+  Framebuffer(Framebuffer&& o) noexcept : id(o.id) { o.id = 0; }
+  Framebuffer& operator=(Framebuffer&& o) noexcept {
+    std::swap(id, o.id);
+    return *this;
+  }
+  ~Framebuffer() {
+    if (id) gl::DeleteFramebuffers(1, &id);
+  }
+};
+
+struct Buffer {
+  GLuint id = 0;
+  std::size_t capacity = 0;
+  Buffer() { gl::CreateBuffers(1, &id); }
+  ~Buffer() { gl::DeleteBuffers(1, &id); }
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+  void upload(const void* data, std::size_t bytes) {
+    // Never empty: a zero-sized storage buffer is an error on some drivers.
+    static const float kZero[4] = {};
+    gl::NamedBufferData(id, static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, sizeof kZero)),
+                        bytes ? data : kZero, GL_STREAM_DRAW);
+    capacity = bytes;
+  }
+};
+
+void check_gl(const char* where) {
+  const GLenum e = gl::GetError();
+  if (e != GL_NO_ERROR) fail_run("OpenGL error 0x{:x} in {}", e, where);
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  RenderSettings settings;
+  int width = 0, height = 0;
+
+  Program sky, mesh, mesh_shadow, sprite_depth, sprite_thickness, sprite_shadow, filter_narrow, filter_bilateral,
+      normals, composite;
+
+  Texture scene_color, scene_depth, fluid_depth, fluid_zbuffer, thickness, filtered[2], normal_map, final_color;
+  Texture shadow_depth, shadow_thickness, shadow_front;
+  Framebuffer scene_fb, fluid_depth_fb, thickness_fb, filter_fb[2], normals_fb, final_fb, shadow_depth_fb,
+      shadow_fluid_fb;
+  GLuint smoothed = 0;  // the texture holding the smoothed depth after the last render
+
+  Buffer uniforms, particles, solid_vertices, ground_vertices;
+  GLuint vao_empty = 0, vao_mesh = 0, vao_ground = 0;
+
+  bool profiling = false;
+  std::vector<std::pair<std::string, double>> times;
+  std::chrono::steady_clock::time_point mark;
+  // Ends the pass `name` when profiling.
+  void lap(const char* name) {
+    if (!profiling) return;
+    gl::Finish();
+    const auto now = std::chrono::steady_clock::now();
+    times.emplace_back(name, std::chrono::duration<double, std::milli>(now - mark).count());
+    mark = now;
+  }
+
+  void build();
+  void set_mesh_layout(GLuint vao, GLuint buffer);
+  void draw_triangles(GLuint vao, std::size_t vertex_count);
+};
+
+void Renderer::Impl::set_mesh_layout(GLuint vao, GLuint buffer) {
+  gl::VertexArrayVertexBuffer(vao, 0, buffer, 0, 9 * sizeof(float));
+  for (GLuint a = 0; a < 3; ++a) {
+    gl::EnableVertexArrayAttrib(vao, a);
+    gl::VertexArrayAttribFormat(vao, a, 3, GL_FLOAT, GL_FALSE, a * 3 * sizeof(float));
+    gl::VertexArrayAttribBinding(vao, a, 0);
+  }
+}
+
+void Renderer::Impl::build() {
+  sky = Program("fullscreen.vert", "sky.frag");
+  mesh = Program("mesh.vert", "mesh.frag");
+  mesh_shadow = Program("mesh_shadow.vert", "empty.frag");
+  sprite_depth = Program("sprite.vert", "sprite_depth.frag");
+  sprite_thickness = Program("sprite.vert", "sprite_thickness.frag");
+  sprite_shadow = Program("sprite_shadow.vert", "sprite_shadow.frag");
+  filter_narrow = Program("fullscreen.vert", "filter_narrow_range.frag");
+  filter_bilateral = Program("fullscreen.vert", "filter_bilateral.frag");
+  normals = Program("fullscreen.vert", "normals.frag");
+  composite = Program("fullscreen.vert", "composite.frag");
+
+  const int w = width, h = height;
+  scene_color = Texture(GL_RGBA16F, w, h, true);
+  scene_depth = Texture(GL_DEPTH_COMPONENT32F, w, h, false);
+  fluid_depth = Texture(GL_R32F, w, h, false);
+  fluid_zbuffer = Texture(GL_DEPTH_COMPONENT32F, w, h, false);
+  thickness = Texture(GL_R32F, w, h, false);
+  filtered[0] = Texture(GL_R32F, w, h, false);
+  filtered[1] = Texture(GL_R32F, w, h, false);
+  normal_map = Texture(GL_RGBA16F, w, h, false);
+  final_color = Texture(GL_RGBA8, w, h, false);
+  shadow_depth = Texture(GL_DEPTH_COMPONENT32F, kSolidShadowSize, kSolidShadowSize, true);
+  gl::TextureParameteri(shadow_depth.id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  gl::TextureParameteri(shadow_depth.id, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  shadow_thickness = Texture(GL_R32F, kFluidShadowSize, kFluidShadowSize, true);
+  shadow_front = Texture(GL_R32F, kFluidShadowSize, kFluidShadowSize, false);
+
+  scene_fb = Framebuffer({scene_color.id}, scene_depth.id, "scene");
+  fluid_depth_fb = Framebuffer({fluid_depth.id}, fluid_zbuffer.id, "fluid depth");
+  thickness_fb = Framebuffer({thickness.id}, 0, "thickness");
+  filter_fb[0] = Framebuffer({filtered[0].id}, 0, "filter");
+  filter_fb[1] = Framebuffer({filtered[1].id}, 0, "filter");
+  normals_fb = Framebuffer({normal_map.id}, 0, "normals");
+  final_fb = Framebuffer({final_color.id}, 0, "final");
+  shadow_depth_fb = Framebuffer({}, shadow_depth.id, "shadow");
+  shadow_fluid_fb = Framebuffer({shadow_thickness.id, shadow_front.id}, 0, "water shadow");
+
+  gl::CreateVertexArrays(1, &vao_empty);
+  gl::CreateVertexArrays(1, &vao_mesh);
+  gl::CreateVertexArrays(1, &vao_ground);
+  set_mesh_layout(vao_mesh, solid_vertices.id);
+  set_mesh_layout(vao_ground, ground_vertices.id);
+  check_gl("set-up");
+}
+
+void Renderer::Impl::draw_triangles(GLuint vao, std::size_t vertex_count) {
+  if (vertex_count == 0) return;
+  gl::BindVertexArray(vao);
+  gl::DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertex_count));
+}
+
+Renderer::Renderer(GlContext& context, const RenderSettings& settings) : impl_(std::make_unique<Impl>()) {
+  (void)context;  // proves a context is current
+  settings.validate();
+  impl_->settings = settings;
+  impl_->width = settings.width;
+  impl_->height = settings.height;
+  impl_->build();
+}
+
+Renderer::~Renderer() {
+  if (impl_) {
+    gl::DeleteVertexArrays(1, &impl_->vao_empty);
+    gl::DeleteVertexArrays(1, &impl_->vao_mesh);
+    gl::DeleteVertexArrays(1, &impl_->vao_ground);
+  }
+}
+
+Image Renderer::render(const RenderInput& in) {
+  Impl& r = *impl_;
+  const RenderSettings& s = r.settings;
+  const int w = r.width, h = r.height;
+  if (!(in.particle_radius > 0)) fail_run("render: particle radius {} is not positive", in.particle_radius);
+  r.times.clear();
+  r.mark = std::chrono::steady_clock::now();
+
+  // ---- geometry of this frame: particles, solids, ground, bounds
+  std::vector<float> positions(3 * in.count);
+  Aabb content;
+  for (std::size_t i = 0; i < in.count; ++i) {
+    positions[3 * i] = in.x[i], positions[3 * i + 1] = in.y[i], positions[3 * i + 2] = in.z[i];
+    content.add(Vec3d(in.x[i], in.y[i], in.z[i]));
+  }
+  if (!content.empty()) {
+    content.min.array() -= in.particle_radius;
+    content.max.array() += in.particle_radius;
+  }
+  r.particles.upload(positions.data(), positions.size() * sizeof(float));
+  std::size_t solid_vertex_count = 0;
+  if (in.solids && !in.solids->vertices.empty()) {
+    r.solid_vertices.upload(in.solids->vertices.data(), in.solids->vertices.size() * sizeof(float));
+    solid_vertex_count = in.solids->vertices.size() / 9;
+    const Aabb b = in.solids->bounds();
+    if (!b.empty()) content.add(b.min), content.add(b.max);
+  }
+  const Camera& cam = in.camera;
+  const double cam_distance = (cam.target - cam.position).norm();
+  const double scene_size = std::max(content.empty() ? cam_distance : content.extent().norm(), 1e-3);
+
+  std::vector<float> ground;
+  if (s.ground) {
+    const Vec3d c = content.empty() ? cam.target : Vec3d(0.5 * (content.min + content.max));
+    const double half = kGroundExtent * std::max(scene_size, cam_distance);
+    const double gz = in.ground_height;
+    const double corners[6][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, -1}, {1, 1}, {-1, 1}};
+    for (const auto& k : corners) {
+      const float v[9] = {static_cast<float>(c.x() + k[0] * half), static_cast<float>(c.y() + k[1] * half),
+                          static_cast<float>(gz), 0, 0, 1, static_cast<float>(s.ground_color.x()),
+                          static_cast<float>(s.ground_color.y()), static_cast<float>(s.ground_color.z())};
+      ground.insert(ground.end(), v, v + 9);
+    }
+    r.ground_vertices.upload(ground.data(), ground.size() * sizeof(float));
+  }
+
+  // Clip planes: everything the camera may see, the ground up to the haze.
+  Aabb visible = content;
+  if (s.ground) {
+    const double reach = kFogDistances * 4 * cam_distance;
+    visible.add(Vec3d(cam.position.x() - reach, cam.position.y() - reach, in.ground_height));
+    visible.add(Vec3d(cam.position.x() + reach, cam.position.y() + reach, in.ground_height));
+  }
+  if (visible.empty()) visible.add(cam.target);
+  double near = 0, far = 0;
+  clip_planes(cam, visible, near, far);
+  // The water and the solids need depth precision; the ground's far reaches do not.
+  // Near comes from what is close to the camera, not from the ground.
+  if (!content.empty()) {
+    double content_near = 0, content_far = 0;
+    clip_planes(cam, content, content_near, content_far);
+    near = std::max(std::min(near, content_near), far * 1e-5);
+  }
+  const double aspect = static_cast<double>(w) / h;
+  const Mat4d view = look_at(cam.position, cam.target, cam.up);
+  const Mat4d proj = perspective(cam.fov_degrees, aspect, near, far);
+  const double focal_px = 0.5 * h / std::tan(cam.fov_degrees * kPi / 360.0);
+
+  // Sun: an orthographic view along the light that holds the content and the
+  // shadows it throws onto the ground.
+  const Vec3d light_dir = s.light.direction.normalized();
+  Aabb shadow_box = content;
+  if (!content.empty() && s.ground && light_dir.z() < -1e-3) {
+    for (int i = 0; i < 8; ++i) {
+      const Vec3d corner((i & 1) ? content.max.x() : content.min.x(), (i & 2) ? content.max.y() : content.min.y(),
+                         (i & 4) ? content.max.z() : content.min.z());
+      const double t = (in.ground_height - corner.z()) / light_dir.z();
+      if (t > 0) shadow_box.add(corner + t * light_dir);
+    }
+  }
+  if (shadow_box.empty()) shadow_box.add(cam.target);
+  const Vec3d sc = 0.5 * (shadow_box.min + shadow_box.max);
+  const double sr = std::max(0.5 * shadow_box.extent().norm(), 1e-3);
+  const Vec3d light_up = std::abs(light_dir.z()) < 0.99 ? Vec3d(0, 0, 1) : Vec3d(0, 1, 0);
+  const Mat4d light_view = look_at(sc - 2 * sr * light_dir, sc, light_up);
+  // Bound the box's corners in light space for a tight square.
+  double lx = 0, ly = 0;
+  for (int i = 0; i < 8; ++i) {
+    const Vec3d corner((i & 1) ? shadow_box.max.x() : shadow_box.min.x(),
+                       (i & 2) ? shadow_box.max.y() : shadow_box.min.y(),
+                       (i & 4) ? shadow_box.max.z() : shadow_box.min.z());
+    const Eigen::Vector4d q = light_view * Eigen::Vector4d(corner.x(), corner.y(), corner.z(), 1);
+    lx = std::max(lx, std::abs(q.x()));
+    ly = std::max(ly, std::abs(q.y()));
+  }
+  const double half_side = std::max({lx, ly, 1e-3}) * 1.02;
+  const Mat4d light_proj = orthographic(-half_side, half_side, -half_side, half_side, 1e-3 * sr, 4 * sr);
+  const double shadow_texel = 2 * half_side / kSolidShadowSize;
+
+  // Thickness scale: a particle stands for spacing^3 of water, its sphere holds more.
+  const double rad = in.particle_radius;
+  const double sphere_volume = 4.0 / 3.0 * kPi * rad * rad * rad;
+  const double thickness_scale =
+      in.particle_spacing > 0 ? std::pow(in.particle_spacing, 3) / sphere_volume : 1.0;
+
+  FrameUniforms u{};
+  put(u.view, view);
+  put(u.proj, proj);
+  put(u.inv_view, Mat4d(view.inverse()));
+  put(u.light_view, light_view);
+  put(u.light_proj, light_proj);
+  put(u.viewport, w, h, 1.0 / w, 1.0 / h);
+  put(u.camera, near, far, focal_px, rad);
+  put(u.light_dir, light_dir, s.light.intensity);
+  put(u.light_color, s.light.color, s.light.ambient);
+  put(u.sky_color, s.sky_color, s.light.shadows ? 1 : 0);
+  put(u.horizon_color, s.horizon_color, kFogDistances * cam_distance);
+  put(u.ground_color, s.ground_color, s.ground_tile);
+  put(u.ground, in.ground_height, s.ground ? 1 : 0, shadow_texel, thickness_scale);
+  put(u.fluid_color, s.fluid_color, s.refraction);
+  put(u.absorption, s.absorption, s.specular);
+  put(u.camera_position, cam.position, static_cast<double>(static_cast<int>(s.view)));
+  const bool bilateral = s.filter == Filter::kBilateral;
+  put(u.filter, s.filter_radius * rad, s.filter_max_pixels,
+      (bilateral ? kBilateralRangeRatio : kRangeRatio) * rad, kClampRatio * rad);
+  r.uniforms.upload(&u, sizeof u);
+  gl::BindBufferBase(GL_UNIFORM_BUFFER, 0, r.uniforms.id);
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, r.particles.id);
+
+  const GLsizei sprite_vertices = static_cast<GLsizei>(6 * in.count);
+  const float zero[4] = {0, 0, 0, 0};
+  const float one = 1.0f;
+  const float far_front[4] = {1, 1, 1, 1};
+
+  // ---- 0. shadow maps
+  gl::Disable(GL_BLEND);
+  gl::Disable(GL_CULL_FACE);
+  gl::ClearNamedFramebufferfv(r.shadow_depth_fb.id, GL_DEPTH, 0, &one);
+  gl::ClearNamedFramebufferfv(r.shadow_fluid_fb.id, GL_COLOR, 0, zero);
+  gl::ClearNamedFramebufferfv(r.shadow_fluid_fb.id, GL_COLOR, 1, far_front);
+  if (s.light.shadows) {
+    gl::BindFramebuffer(GL_FRAMEBUFFER, r.shadow_depth_fb.id);
+    gl::Viewport(0, 0, kSolidShadowSize, kSolidShadowSize);
+    gl::Enable(GL_DEPTH_TEST);
+    gl::DepthFunc(GL_LESS);
+    gl::DepthMask(GL_TRUE);
+    r.mesh_shadow.use();
+    r.draw_triangles(r.vao_mesh, solid_vertex_count);
+    if (in.count > 0) {
+      gl::BindFramebuffer(GL_FRAMEBUFFER, r.shadow_fluid_fb.id);
+      gl::Viewport(0, 0, kFluidShadowSize, kFluidShadowSize);
+      gl::Disable(GL_DEPTH_TEST);
+      gl::Enable(GL_BLEND);
+      gl::BlendEquationi(0, GL_FUNC_ADD);
+      gl::BlendFunci(0, GL_ONE, GL_ONE);
+      gl::BlendEquationi(1, GL_MIN);
+      gl::BlendFunci(1, GL_ONE, GL_ONE);
+      r.sprite_shadow.use();
+      gl::BindVertexArray(r.vao_empty);
+      gl::DrawArrays(GL_TRIANGLES, 0, sprite_vertices);
+      gl::Disable(GL_BLEND);
+    }
+  }
+
+  r.lap("upload and shadow maps");
+
+  // ---- 1. scene: sky, ground, solids
+  gl::Viewport(0, 0, w, h);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, r.scene_fb.id);
+  gl::ClearNamedFramebufferfv(r.scene_fb.id, GL_DEPTH, 0, &one);
+  gl::Disable(GL_DEPTH_TEST);
+  r.sky.use();
+  gl::BindVertexArray(r.vao_empty);
+  gl::DrawArrays(GL_TRIANGLES, 0, 3);
+  gl::Enable(GL_DEPTH_TEST);
+  gl::DepthFunc(GL_LESS);
+  gl::DepthMask(GL_TRUE);
+  gl::BindTextureUnit(4, r.shadow_depth.id);
+  gl::BindTextureUnit(5, r.shadow_thickness.id);
+  gl::BindTextureUnit(6, r.shadow_front.id);
+  r.mesh.use();
+  r.mesh.set("u_is_ground", 1);
+  r.draw_triangles(r.vao_ground, ground.size() / 9);
+  r.mesh.set("u_is_ground", 0);
+  r.draw_triangles(r.vao_mesh, solid_vertex_count);
+
+  r.lap("scene");
+
+  // ---- 2. fluid depth
+  gl::BindFramebuffer(GL_FRAMEBUFFER, r.fluid_depth_fb.id);
+  gl::ClearNamedFramebufferfv(r.fluid_depth_fb.id, GL_COLOR, 0, zero);
+  gl::ClearNamedFramebufferfv(r.fluid_depth_fb.id, GL_DEPTH, 0, &one);
+  gl::BindTextureUnit(0, r.scene_depth.id);
+  if (in.count > 0) {
+    r.sprite_depth.use();
+    gl::BindVertexArray(r.vao_empty);
+    gl::DrawArrays(GL_TRIANGLES, 0, sprite_vertices);
+  }
+
+  r.lap("fluid depth");
+
+  // ---- 3. thickness
+  gl::Disable(GL_DEPTH_TEST);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, r.thickness_fb.id);
+  gl::ClearNamedFramebufferfv(r.thickness_fb.id, GL_COLOR, 0, zero);
+  if (in.count > 0) {
+    gl::Enable(GL_BLEND);
+    gl::BlendEquation(GL_FUNC_ADD);
+    gl::BlendFunc(GL_ONE, GL_ONE);
+    r.sprite_thickness.use();
+    gl::BindVertexArray(r.vao_empty);
+    gl::DrawArrays(GL_TRIANGLES, 0, sprite_vertices);
+    gl::Disable(GL_BLEND);
+  }
+
+  r.lap("thickness");
+
+  // ---- 4. smoothing and normals
+  r.smoothed = r.fluid_depth.id;
+  if (s.filter != Filter::kNone && in.count > 0) {
+    const Program& f = bilateral ? r.filter_bilateral : r.filter_narrow;
+    const GLint dir = gl::GetUniformLocation(f.id(), "u_direction");
+    f.use();
+    gl::BindVertexArray(r.vao_empty);
+    gl::BindFramebuffer(GL_FRAMEBUFFER, r.filter_fb[0].id);
+    gl::ProgramUniform2i(f.id(), dir, 1, 0);
+    gl::BindTextureUnit(0, r.fluid_depth.id);
+    gl::DrawArrays(GL_TRIANGLES, 0, 3);
+    gl::BindFramebuffer(GL_FRAMEBUFFER, r.filter_fb[1].id);
+    gl::ProgramUniform2i(f.id(), dir, 0, 1);
+    gl::BindTextureUnit(0, r.filtered[0].id);
+    gl::DrawArrays(GL_TRIANGLES, 0, 3);
+    r.smoothed = r.filtered[1].id;
+  }
+  r.lap("smoothing");
+  gl::BindFramebuffer(GL_FRAMEBUFFER, r.normals_fb.id);
+  r.normals.use();
+  gl::BindTextureUnit(0, r.smoothed);
+  gl::BindVertexArray(r.vao_empty);
+  gl::DrawArrays(GL_TRIANGLES, 0, 3);
+
+  r.lap("normals");
+
+  // ---- 5. composite
+  gl::BindFramebuffer(GL_FRAMEBUFFER, r.final_fb.id);
+  r.composite.use();
+  gl::BindTextureUnit(0, r.scene_color.id);
+  gl::BindTextureUnit(1, r.scene_depth.id);
+  gl::BindTextureUnit(2, r.smoothed);
+  gl::BindTextureUnit(3, r.thickness.id);
+  gl::BindTextureUnit(7, r.normal_map.id);
+  gl::DrawArrays(GL_TRIANGLES, 0, 3);
+  check_gl("render");
+  r.lap("composite");
+
+  // ---- read back, top row first
+  std::vector<std::uint8_t> rgba(4 * static_cast<std::size_t>(w) * h);
+  gl::BindFramebuffer(GL_READ_FRAMEBUFFER, r.final_fb.id);
+  gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl::ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  check_gl("glReadPixels");
+  Image image;
+  image.width = w;
+  image.height = h;
+  image.rgb.resize(3 * static_cast<std::size_t>(w) * h);
+  for (int y = 0; y < h; ++y) {
+    const std::uint8_t* src = &rgba[4 * static_cast<std::size_t>(h - 1 - y) * w];
+    std::uint8_t* dst = &image.rgb[3 * static_cast<std::size_t>(y) * w];
+    for (int x = 0; x < w; ++x) dst[3 * x] = src[4 * x], dst[3 * x + 1] = src[4 * x + 1], dst[3 * x + 2] = src[4 * x + 2];
+  }
+  r.lap("read back");
+  return image;
+}
+
+void Renderer::set_profiling(bool on) { impl_->profiling = on; }
+std::vector<std::pair<std::string, double>> Renderer::pass_times() const { return impl_->times; }
+
+FluidLayers Renderer::read_fluid_layers() const {
+  const Impl& r = *impl_;
+  FluidLayers layers;
+  layers.width = r.width;
+  layers.height = r.height;
+  const std::size_t n = static_cast<std::size_t>(r.width) * r.height;
+  auto read = [&](GLuint texture, int channels, GLenum format, std::vector<float>& out) {
+    std::vector<float> raw(n * channels);
+    gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl::GetTextureSubImage(texture, 0, 0, 0, 0, r.width, r.height, 1, format, GL_FLOAT,
+                           static_cast<GLsizei>(raw.size() * sizeof(float)), raw.data());
+    out.resize(n * (channels == 4 ? 3 : 1));
+    const int keep = channels == 4 ? 3 : 1;
+    for (int y = 0; y < r.height; ++y)
+      for (int x = 0; x < r.width; ++x)
+        for (int c = 0; c < keep; ++c)
+          out[(static_cast<std::size_t>(y) * r.width + x) * keep + c] =
+              raw[(static_cast<std::size_t>(r.height - 1 - y) * r.width + x) * channels + c];
+  };
+  read(r.fluid_depth.id, 1, GL_RED, layers.depth);
+  read(r.smoothed ? r.smoothed : r.fluid_depth.id, 1, GL_RED, layers.smoothed_depth);
+  read(r.thickness.id, 1, GL_RED, layers.thickness);
+  read(r.normal_map.id, 4, GL_RGBA, layers.normals);
+  check_gl("reading the fluid layers");
+  return layers;
+}
+
+}  // namespace bw::render

@@ -1,0 +1,268 @@
+#include "render/sequence.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "common/terminal.h"
+#include "io/frame_file.h"
+#include "io/h5.h"
+#include "render/camera.h"
+#include "render/gl_context.h"
+#include "render/image.h"
+#include "render/particle_spacing.h"
+#include "render/renderer.h"
+#include "render/solids.h"
+#include "render/video.h"
+
+namespace bw::render {
+namespace fs = std::filesystem;
+namespace {
+
+// Video frame rate when the frames' times do not give one.
+constexpr double kDefaultFps = 30;
+// Sphere radius (m) when the reference frame has too few particles to measure their
+// spacing: a centimetre suits the metre-sized example scenes.
+constexpr double kFallbackRadius = 0.01;
+
+std::optional<int> parse_int(std::string_view s) {
+  int v = 0;
+  if (s.empty()) return std::nullopt;
+  auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || end != s.data() + s.size()) return std::nullopt;
+  return v;
+}
+
+std::vector<double> parse_numbers(std::string_view s, const std::string& whole) {
+  std::vector<double> out;
+  std::size_t start = 0;
+  while (start <= s.size()) {
+    const std::size_t comma = s.find(',', start);
+    const std::string part(s.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
+    char* end = nullptr;
+    const double v = std::strtod(part.c_str(), &end);
+    if (part.empty() || *end != '\0' || !std::isfinite(v))
+      fail_input("--camera '{}': '{}' is not a number", whole, part);
+    out.push_back(v);
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+// Frame files of a folder by number: NNNNNN.h5 (digits only).
+std::map<int, std::string> list_frames(const std::string& dir) {
+  std::map<int, std::string> frames;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() < 4 || name.substr(name.size() - 3) != ".h5") continue;
+    const std::string stem = name.substr(0, name.size() - 3);
+    if (!std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; })) continue;
+    if (auto n = parse_int(stem)) frames[*n] = entry.path().string();
+  }
+  return frames;
+}
+
+}  // namespace
+
+FrameRange parse_frame_range(const std::string& text) {
+  FrameRange r;
+  const auto bad = [&](const char* why) { fail_input("--frames '{}': {}", text, why); };
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t colon = text.find(':', start);
+    parts.push_back(text.substr(start, colon == std::string::npos ? std::string::npos : colon - start));
+    if (colon == std::string::npos) break;
+    start = colon + 1;
+  }
+  if (parts.size() > 3) bad("expected A:B or A:B:S");
+  auto number = [&](const std::string& s) -> std::optional<int> {
+    if (s.empty()) return std::nullopt;
+    auto v = parse_int(s);
+    if (!v || *v < 0) bad("frame numbers are integers >= 0");
+    return v;
+  };
+  r.first = number(parts[0]);
+  if (parts.size() == 1) {
+    if (!r.first) bad("expected A:B or A:B:S");
+    r.last = r.first;
+    return r;
+  }
+  r.last = number(parts[1]);
+  if (parts.size() == 3) {
+    auto s = number(parts[2]);
+    if (!s || *s < 1) bad("the step must be an integer >= 1");
+    r.step = *s;
+  }
+  if (r.first && r.last && *r.first > *r.last) bad("the range is empty (first > last)");
+  return r;
+}
+
+Camera parse_camera(const std::string& text) {
+  Camera c;
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t colon = text.find(':', start);
+    parts.push_back(text.substr(start, colon == std::string::npos ? std::string::npos : colon - start));
+    if (colon == std::string::npos) break;
+    start = colon + 1;
+  }
+  if (parts.size() < 2 || parts.size() > 3) fail_input("--camera '{}': expected PX,PY,PZ:TX,TY,TZ[:FOV]", text);
+  const auto p = parse_numbers(parts[0], text), t = parse_numbers(parts[1], text);
+  if (p.size() != 3 || t.size() != 3) fail_input("--camera '{}': position and target need 3 numbers each", text);
+  c.position = Vec3d(p[0], p[1], p[2]);
+  c.target = Vec3d(t[0], t[1], t[2]);
+  if (parts.size() == 3) {
+    const auto f = parse_numbers(parts[2], text);
+    if (f.size() != 1) fail_input("--camera '{}': the field of view is one number", text);
+    c.fov_degrees = f[0];
+  }
+  RenderSettings check;
+  check.camera = c;
+  check.validate("--camera");
+  return c;
+}
+
+SequencePlan plan_sequence(const SequenceJob& job) {
+  SequencePlan plan;
+  std::error_code ec;
+  if (!fs::is_directory(job.frames_dir, ec)) fail_input("{}: no such folder of frames", job.frames_dir);
+  const std::map<int, std::string> frames = list_frames(job.frames_dir);
+  if (frames.empty()) fail_input("{}: holds no frame files (NNNNNN.h5)", job.frames_dir);
+  plan.reference_frame = frames.begin()->second;
+
+  const int first = job.range.first.value_or(frames.begin()->first);
+  const int last = job.range.last.value_or(frames.rbegin()->first);
+  if (first > last) fail_input("{}: the range {}:{} is empty", job.frames_dir, first, last);
+  const int step = std::max(job.range.step, 1);
+  for (long n = first; n <= last; n += step) {
+    auto it = frames.find(static_cast<int>(n));
+    if (it == frames.end())
+      fail_input("frame {} is missing: {}", n, frame_file_name(job.frames_dir, static_cast<int>(n)));
+    plan.frames.push_back({static_cast<int>(n), it->second, 0});
+  }
+  if (plan.frames.empty()) fail_input("{}: the range {}:{}:{} is empty", job.frames_dir, first, last, step);
+  // Every frame must be a frame file before anything is drawn.
+  for (FramePlan& f : plan.frames) {
+    h5::File file = h5::File::open(f.path, "frame");
+    f.time = file.root().attr<double>("time");
+  }
+  if (plan.frames.size() >= 2) {
+    const double span = plan.frames.back().time - plan.frames.front().time;
+    plan.fps = span > 0 ? (plan.frames.size() - 1) / span : kDefaultFps;
+  }
+  if (job.fps > 0) plan.fps = job.fps;
+
+  plan.run_path = job.run_path;
+  if (plan.run_path.empty()) {
+    const fs::path guess = fs::path(job.frames_dir) / ".." / "run.h5";
+    if (fs::exists(guess, ec)) plan.run_path = guess.lexically_normal().string();
+  }
+
+  if (job.output_dir.empty()) fail_input("no output folder given (-o)");
+  if (!fs::is_directory(job.output_dir, ec)) {
+    fs::create_directories(job.output_dir, ec);
+    if (ec) fail_input("{}: cannot create the output folder: {}", job.output_dir, ec.message());
+  }
+  if (::access(job.output_dir.c_str(), W_OK) != 0) fail_input("{}: the output folder is not writable", job.output_dir);
+  if (!job.video_path.empty()) VideoWriter::check_available(job.video_path);
+  return plan;
+}
+
+SequenceReport render_sequence(const SequenceJob& job, const std::function<void(const SequenceProgress&)>& on_frame) {
+  Stopwatch clock;
+  const SequencePlan plan = plan_sequence(job);
+  RenderSettings settings = job.settings;
+  settings.validate();
+
+  SequenceReport report;
+  report.fps = plan.fps;
+  const SolidScene solids =
+      SolidScene::load({plan.run_path, job.fragments_path}, {settings.solid_color, settings.body_color});
+  report.solids = solids.solid_count();
+  report.fragments = solids.fragment_count();
+
+  // The reference frame (the folder's first) fixes what must not change within a
+  // sequence, whichever part of it this process renders: particle size, ground
+  // height, the fitted camera.
+  const FrameData reference = read_frame(plan.reference_frame);
+  const double spacing =
+      estimate_particle_spacing(reference.x.data(), reference.y.data(), reference.z.data(), reference.fluid_count());
+  double radius = settings.particle_radius;
+  if (!(radius > 0)) radius = spacing > 0 ? settings.particle_radius_factor * spacing : kFallbackRadius;
+  report.particle_radius = radius;
+  report.particle_spacing = spacing;
+
+  Aabb box = solids.reference_bounds();
+  const TriangleSoup reference_solids = solids.place(reference.bodies);
+  const Aabb placed = reference_solids.bounds();
+  if (!placed.empty()) box.add(placed.min), box.add(placed.max);
+  Aabb fluid_box;
+  for (std::size_t i = 0; i < reference.fluid_count(); ++i)
+    fluid_box.add(Vec3d(reference.x[i], reference.y[i], reference.z[i]));
+  if (!fluid_box.empty()) {
+    fluid_box.min.array() -= radius;
+    fluid_box.max.array() += radius;
+    box.add(fluid_box.min), box.add(fluid_box.max);
+  }
+  report.ground_height = settings.ground_height.value_or(box.empty() ? 0.0 : box.min.z());
+  const double aspect = static_cast<double>(settings.width) / settings.height;
+  if (settings.camera) {
+    report.camera = *settings.camera;
+  } else {
+    report.camera = fit_camera(box, Camera{}.fov_degrees, aspect);
+    report.camera_fitted = true;
+  }
+
+  std::unique_ptr<GlContext> context = GlContext::create();
+  report.renderer = context->renderer();
+  report.display = context->display();
+  Renderer renderer(*context, settings);
+  std::unique_ptr<VideoWriter> video;
+  if (!job.video_path.empty()) video = std::make_unique<VideoWriter>(job.video_path, plan.fps);
+
+  double render_seconds = 0;
+  for (std::size_t i = 0; i < plan.frames.size(); ++i) {
+    const FramePlan& f = plan.frames[i];
+    Stopwatch frame_clock;
+    const FrameData frame = read_frame(f.path);
+    std::size_t missing = 0;
+    const TriangleSoup soup = solids.place(frame.bodies, &missing);
+    report.bodies_without_mesh = std::max(report.bodies_without_mesh, missing);
+    report.max_particles = std::max(report.max_particles, frame.fluid_count());
+    RenderInput input;
+    input.x = frame.x.data(), input.y = frame.y.data(), input.z = frame.z.data();
+    input.count = frame.fluid_count();
+    input.solids = &soup;
+    input.camera = report.camera;
+    input.particle_radius = radius;
+    input.particle_spacing = spacing;
+    input.ground_height = report.ground_height;
+    const Image image = renderer.render(input);
+    const std::vector<std::uint8_t> png = encode_png(image);
+    write_file_atomically(fmt::format("{}/{:06d}.png", job.output_dir, f.number), png.data(), png.size());
+    if (video) video->add_png(png);
+    render_seconds += frame_clock.seconds();
+    if (on_frame) on_frame({i + 1, plan.frames.size(), f.number, clock.seconds()});
+  }
+  if (video) {
+    video->finish();
+    report.video_path = job.video_path;
+  }
+  report.frames = plan.frames.size();
+  report.first = plan.frames.front().number;
+  report.last = plan.frames.back().number;
+  report.seconds = clock.seconds();
+  report.render_ms_per_frame = 1000 * render_seconds / static_cast<double>(plan.frames.size());
+  return report;
+}
+
+}  // namespace bw::render

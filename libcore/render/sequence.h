@@ -1,0 +1,87 @@
+// Rendering a sequence of frame files into PNG images (and a video): the whole job
+// of bw-render, so that the tool only parses its command line.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "render/render_settings.h"
+
+namespace bw::render {
+
+// Frames first..last (inclusive) every step. An open end takes the last frame
+// present in the folder.
+struct FrameRange {
+  std::optional<int> first;
+  std::optional<int> last;
+  int step = 1;
+};
+
+// "A:B", "A:B:S", "A:", ":B", "A" (that frame alone), "::S". Throws InputError.
+FrameRange parse_frame_range(const std::string& text);
+
+// "PX,PY,PZ:TX,TY,TZ[:FOV]": position, target and the vertical field of view in
+// degrees (45 when left out); up is +z. Throws InputError.
+Camera parse_camera(const std::string& text);
+
+struct SequenceJob {
+  std::string frames_dir;       // OUTDIR/frames of a simulation
+  std::string output_dir;       // created when missing
+  FrameRange range;
+  std::string run_path;         // empty: FRAMES_DIR/../run.h5 when it exists
+  std::string fragments_path;   // empty: no fragments
+  std::string video_path;       // empty: no video
+  double fps = 0;               // video frame rate; 0: from the frames' times
+  RenderSettings settings;
+};
+
+struct FramePlan {
+  int number = 0;               // from the file name, NNNNNN.h5
+  std::string path;
+  double time = 0;
+};
+
+// What render_sequence will do, checked before any rendering: every frame of the
+// range exists and is a frame file, the output folder is writable, the run and
+// fragments files read. Throws InputError for bad input.
+struct SequencePlan {
+  std::vector<FramePlan> frames;       // to render, in order
+  std::string reference_frame;         // lowest-numbered frame of the folder
+  std::string run_path;                // resolved; empty when none
+  double fps = 30;
+};
+SequencePlan plan_sequence(const SequenceJob& job);
+
+struct SequenceProgress {
+  std::size_t done = 0, total = 0;
+  int frame = 0;                 // number of the frame just written
+  double seconds = 0;            // since the start
+};
+
+struct SequenceReport {
+  std::size_t frames = 0;
+  int first = 0, last = 0;
+  double seconds = 0;            // wall clock, everything
+  double render_ms_per_frame = 0;  // reading, drawing and writing one frame
+  std::string renderer, display;   // GL_RENDERER; how the EGL display was found
+  Camera camera;
+  bool camera_fitted = false;
+  double particle_radius = 0, particle_spacing = 0, ground_height = 0;
+  std::size_t max_particles = 0;
+  std::size_t bodies_without_mesh = 0;  // largest count in any frame
+  std::size_t solids = 0, fragments = 0;
+  std::string video_path;
+  double fps = 0;
+};
+
+// Renders every frame of the plan to OUTPUT_DIR/NNNNNN.png (through temporary files)
+// and, when asked, the video. Throws InputError for bad input (before anything is
+// written when it can be found out beforehand) and RunError when the GL context, a
+// shader, a write or ffmpeg fails. `on_frame` is called after each written frame.
+SequenceReport render_sequence(const SequenceJob& job,
+                               const std::function<void(const SequenceProgress&)>& on_frame = {});
+
+}  // namespace bw::render

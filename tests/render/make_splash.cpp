@@ -1,0 +1,24 @@
+// Writes the synthetic splash of synthetic.h as a simulation output folder:
+//   make-splash OUTDIR [PARTICLES]  ->  OUTDIR/run.h5, OUTDIR/wall.h5, OUTDIR/frames/000000.h5
+// Used for the documentation picture (docs/rendering.md) and by hand.
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "io/frame_file.h"
+#include "synthetic.h"
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: make-splash OUTDIR [PARTICLES]\n");
+    return 2;
+  }
+  const std::string dir = argv[1];
+  const std::size_t particles = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 120000;
+  std::filesystem::create_directories(dir + "/frames");
+  bw::render::test::write_wall_run(std::filesystem::absolute(dir).string());
+  const bw::FrameData f = bw::render::test::splash_frame(particles);
+  bw::write_frame(f, bw::frame_file_name(dir + "/frames", 0));
+  std::printf("%s: %zu particles\n", dir.c_str(), f.fluid_count());
+  return 0;
+}

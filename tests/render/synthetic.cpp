@@ -1,0 +1,75 @@
+#include "synthetic.h"
+
+#include <cmath>
+#include <random>
+
+#include "io/particles_file.h"
+#include "io/run_file.h"
+#include "mesh/shapes.h"
+#include "sample/sampler.h"
+
+namespace bw::render::test {
+namespace {
+
+void add_lattice(FrameData& frame, const Vec3d& min, const Vec3d& max, double spacing, double jitter,
+                 std::uint32_t seed, const Vec3d* center, double radius) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-jitter * spacing, jitter * spacing);
+  const Eigen::Vector3i n = ((max - min) / spacing).array().floor().cast<int>();
+  for (int k = 0; k <= n.z(); ++k)
+    for (int j = 0; j <= n.y(); ++j)
+      for (int i = 0; i <= n.x(); ++i) {
+        Vec3d p = min + spacing * Vec3d(i, j, k);
+        if (center && (p - *center).norm() > radius) continue;
+        p += Vec3d(u(rng), u(rng), u(rng));
+        frame.x.push_back(static_cast<float>(p.x()));
+        frame.y.push_back(static_cast<float>(p.y()));
+        frame.z.push_back(static_cast<float>(p.z()));
+      }
+}
+
+}  // namespace
+
+void add_ball(FrameData& frame, const Vec3d& center, double radius, double spacing, double jitter,
+              std::uint32_t seed) {
+  add_lattice(frame, center.array() - radius, center.array() + radius, spacing, jitter, seed, &center, radius);
+}
+
+void add_block(FrameData& frame, const Vec3d& min, const Vec3d& max, double spacing, double jitter,
+               std::uint32_t seed) {
+  add_lattice(frame, min, max, spacing, jitter, seed, nullptr, 0);
+}
+
+FrameData splash_frame(std::size_t particles, int frame_number) {
+  // Pool 2 x 1.2 x 0.25 m and a ball of radius 0.3 m: volume 0.6 + 0.113 m^3.
+  const double volume = 2.0 * 1.2 * 0.25 + 4.0 / 3.0 * 3.14159265358979 * 0.027;
+  const double spacing = std::cbrt(volume / static_cast<double>(particles));
+  FrameData f;
+  f.frame = frame_number;
+  f.time = frame_number / 60.0;
+  add_block(f, Vec3d(-1.0, -0.75, 0.0) + Vec3d::Constant(spacing / 2), Vec3d(1.0, 0.45, 0.25), spacing, 0.1, 7);
+  add_ball(f, Vec3d(0.15, -0.2, 0.75), 0.3, spacing, 0.1, 11);
+  return f;
+}
+
+Aabb write_wall_run(const std::string& dir, const Vec3d& translation) {
+  const Vec3d lo(-1.0, 0.45, 0.0), hi(1.0, 0.6, 1.0);
+  const SampledSolid wall = sample::sample_mesh(mesh::box(lo, hi), {0.05, false, "box", 1.0});
+  write_particles(wall, dir + "/wall.h5", "synthetic");
+  RunRecord run;
+  run.tool = "synthetic";
+  run.status = "complete";
+  SolidRecord solid;
+  solid.name = "wall";
+  solid.particles = dir + "/wall.h5";
+  solid.kind = "static";
+  solid.translation = translation;
+  run.solids.push_back(solid);
+  write_run(run, dir + "/run.h5");
+  Aabb box;
+  box.add(lo + translation);
+  box.add(hi + translation);
+  return box;
+}
+
+}  // namespace bw::render::test

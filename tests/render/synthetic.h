@@ -1,0 +1,32 @@
+// Synthetic frames and runs for the renderer's tests, benchmark and documentation
+// image: balls and pools of particles on jittered lattices, a wall sampled from a box
+// mesh, written with the file layer exactly as bw-sim and bw-sample write them.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "common/geometry.h"
+#include "io/frame_file.h"
+
+namespace bw::render::test {
+
+// Particles of spacing `spacing` on a cubic lattice inside the ball, each moved by
+// up to `jitter` * spacing along each axis (seeded).
+void add_ball(FrameData& frame, const Vec3d& center, double radius, double spacing, double jitter,
+              std::uint32_t seed);
+// Particles filling the box [min, max] likewise.
+void add_block(FrameData& frame, const Vec3d& min, const Vec3d& max, double spacing, double jitter,
+               std::uint32_t seed);
+
+// A splash of about `particles` particles: a pool 2 m x 1.2 m in front of a wall
+// along x at y = 0.45, and a ball falling into it (the documentation picture and
+// the benchmark). Spacing follows from the count.
+FrameData splash_frame(std::size_t particles, int frame_number = 0);
+
+// Writes a run file `dir`/run.h5 with one static solid: a wall (box mesh sampled at
+// 0.05 m into `dir`/wall.h5) spanning x in [-1, 1], y in [0.45, 0.6], z in [0, 1]
+// after the given translation. Returns the wall's bounds in the world.
+Aabb write_wall_run(const std::string& dir, const Vec3d& translation = Vec3d::Zero());
+
+}  // namespace bw::render::test

@@ -1,0 +1,115 @@
+// bw-render: screen-space fluid rendering of a simulation's frames into PNG images.
+#include <cstdio>
+#include <optional>
+
+#include "cli/tool.h"
+#include "common/terminal.h"
+#include "common/text.h"
+#include "render/sequence.h"
+
+namespace {
+
+struct Options {
+  std::string frames_dir;
+  std::string output_dir;
+  std::string frames;          // A:B[:S]
+  std::string scene;
+  std::string fragments;
+  std::string run;
+  std::optional<int> width, height;
+  std::string camera;          // PX,PY,PZ:TX,TY,TZ[:FOV]
+  std::string filter;
+  std::string view = "shaded";
+  std::string video;
+  double fps = 0;
+  double radius = 0;
+  bool quiet = false;
+  bool verbose = false;
+
+  // Builds the job: the scene's tables, then the command line over them.
+  bw::render::SequenceJob job() const {
+    bw::render::SequenceJob j;
+    j.frames_dir = frames_dir;
+    j.output_dir = output_dir;
+    if (!frames.empty()) j.range = bw::render::parse_frame_range(frames);
+    j.run_path = run;
+    j.fragments_path = fragments;
+    j.video_path = video;
+    j.fps = fps;
+    j.settings = scene.empty() ? bw::render::RenderSettings{} : bw::render::load_render_settings(scene);
+    if (width) j.settings.width = *width;
+    if (height) j.settings.height = *height;
+    if (!camera.empty()) j.settings.camera = bw::render::parse_camera(camera);
+    if (!filter.empty()) j.settings.filter = *bw::render::parse_filter(filter);
+    j.settings.view = *bw::render::parse_view(view);
+    if (radius > 0) j.settings.particle_radius = radius;
+    j.settings.validate("command line");
+    return j;
+  }
+};
+
+void print_summary(const Options& o, const bw::render::SequenceJob& job, const bw::render::SequenceReport& r) {
+  std::fprintf(stderr, "bw-render: %zu frames (%06d..%06d) -> %s in %s, %.0f ms per frame\n", r.frames, r.first,
+               r.last, o.output_dir.c_str(), bw::human_duration(r.seconds).c_str(), r.render_ms_per_frame);
+  if (!r.video_path.empty()) std::fprintf(stderr, "  video        %s at %.3g fps\n", r.video_path.c_str(), r.fps);
+  if (r.bodies_without_mesh)
+    std::fprintf(stderr, "  note         up to %zu bodies per frame had no mesh to draw (give --fragments)\n",
+                 r.bodies_without_mesh);
+  if (!o.verbose) return;
+  const auto& s = job.settings;
+  const auto& c = r.camera;
+  std::fprintf(stderr, "  renderer     %s (%s)\n", r.renderer.c_str(), r.display.c_str());
+  std::fprintf(stderr, "  image        %d x %d, filter %s\n", s.width, s.height, bw::render::filter_name(s.filter));
+  std::fprintf(stderr, "  camera       %g,%g,%g:%g,%g,%g:%g%s\n", c.position.x(), c.position.y(), c.position.z(),
+               c.target.x(), c.target.y(), c.target.z(), c.fov_degrees, r.camera_fitted ? " (fitted)" : "");
+  std::fprintf(stderr, "  particles    up to %zu, radius %.4g m (spacing %.4g m)\n", r.max_particles,
+               r.particle_radius, r.particle_spacing);
+  std::fprintf(stderr, "  solids       %zu, fragments %zu, ground at z = %.4g\n", r.solids, r.fragments,
+               r.ground_height);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Render a simulation's frames with screen-space fluid rendering: one PNG per frame,\n"
+               "named by the frame's number, and optionally a video.",
+               "bw-render"};
+  bw::cli::setup(app,
+                 "  bw-render out/wall/frames -o out/wall/images\n"
+                 "  bw-render out/wall/frames -o images --scene examples/wall.toml --frames 0:239:2\n"
+                 "  bw-render frames -o images --fragments fragments.h5 --video wall.mp4\n"
+                 "  bw-render frames -o images --frames 0:99 --width 640 --height 360 --camera 2,-3,1.5:0,0,0.4:40\n");
+  Options o;
+  app.add_option("frames_dir", o.frames_dir, "Folder of frame files (OUTDIR/frames of a simulation)")->required();
+  app.add_option("-o,--output", o.output_dir, "Folder for the images (created when missing)")->required();
+  app.add_option("--frames", o.frames, "Frames A:B[:S], both ends included (default: all)");
+  app.add_option("--scene", o.scene, "Scene file: its [camera], [light] and [render] tables");
+  app.add_option("--fragments", o.fragments, "Fragment meshes of the run (bw-voronoi replay)");
+  app.add_option("--run", o.run, "Run file (default: FRAMES_DIR/../run.h5 when present)");
+  app.add_option("--width", o.width, "Image width in pixels (default 1280)")->check(CLI::Range(1, 16384));
+  app.add_option("--height", o.height, "Image height in pixels (default 720)")->check(CLI::Range(1, 16384));
+  app.add_option("--camera", o.camera, "Camera PX,PY,PZ:TX,TY,TZ[:FOV] (position, target, vertical fov)");
+  app.add_option("--filter", o.filter, "Depth smoothing")->check(CLI::IsMember({"narrow-range", "bilateral", "none"}));
+  app.add_option("--view", o.view, "What to draw: the picture or a layer of the fluid")
+      ->check(CLI::IsMember({"shaded", "depth", "thickness", "normals"}));
+  app.add_option("--radius", o.radius, "Particle sphere radius in m (default: estimated)")->check(bw::cli::kPositive);
+  app.add_option("--video", o.video, "Also encode a video (.mp4, .mov, .mkv) with ffmpeg");
+  app.add_option("--fps", o.fps, "Video frame rate (default: from the frames' times)")->check(bw::cli::kPositive);
+  app.add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
+  app.add_flag("-v,--verbose", o.verbose, "Print the renderer, camera, particle size and solids used");
+
+  return bw::cli::run(app, argc, argv, [&] {
+    const bw::render::SequenceJob job = o.job();
+    bw::ProgressLine progress(!o.quiet);
+    const auto report = bw::render::render_sequence(job, [&](const bw::render::SequenceProgress& p) {
+      const double per_frame = p.seconds / static_cast<double>(p.done);
+      progress.update(fmt::format("bw-render: frame {:06d} ({}/{}), {:.0f} ms per frame, {} left", p.frame, p.done,
+                                  p.total, 1000 * per_frame,
+                                  bw::human_duration(per_frame * static_cast<double>(p.total - p.done))),
+                      p.done == p.total);
+    });
+    progress.clear();
+    if (!o.quiet) print_summary(o, job, report);
+    return bw::kExitOk;
+  });
+}
