@@ -18,7 +18,13 @@ layout(std140, binding = 0) uniform Frame {
   vec4 u_absorption;       // rgb (1/m), specular strength
   vec4 u_camera_position;  // world xyz, view mode (0 shaded, 1 depth, 2 thickness, 3 normals)
   vec4 u_filter;           // world radius (m), max radius (pixels), range threshold (m), clamp (m)
+  vec4 u_misc;             // guard band (pixels), largest point size, water shadow point size, unused
 };
+
+// Eye distance stored where a pixel shows no fluid (cleared to it; depth is blended
+// with MIN, so any water in front replaces it).
+const float kNoFluid = 1e30;
+bool is_fluid(float d) { return d < 1e29; }
 
 // Eye distance along the view axis of a window-space depth of the scene (perspective).
 float eye_distance(float window_depth) {

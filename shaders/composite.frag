@@ -29,14 +29,16 @@ vec3 encode_srgb(vec3 c) {
 }
 
 void main() {
-  ivec2 p = ivec2(gl_FragCoord.xy);
+  // The final image is the inside of the guard band of every other layer.
+  vec2 frag = gl_FragCoord.xy + u_misc.x;
+  ivec2 p = ivec2(frag);
   vec3 scene = texelFetch(t_scene_color, p, 0).rgb;
   float scene_d = eye_distance(texelFetch(t_scene_depth, p, 0).r);
   float d = texelFetch(t_fluid_depth, p, 0).r;
   float thickness = texelFetch(t_thickness, p, 0).r;
   vec3 n = texelFetch(t_normals, p, 0).xyz;
   int mode = int(u_camera_position.w + 0.5);
-  bool water = d > 0.0 && d < scene_d && dot(n, n) > 0.5;
+  bool water = is_fluid(d) && d < scene_d && dot(n, n) > 0.5;
 
   if (mode == 1) {  // depth: near is bright
     o_color = vec4(vec3(water ? 1.0 - (d - u_camera.x) / (u_camera.y - u_camera.x) : 0.0), 1.0);
@@ -53,7 +55,7 @@ void main() {
 
   vec3 color = scene;
   if (water) {
-    vec3 pos = view_position(gl_FragCoord.xy, d);
+    vec3 pos = view_position(frag, d);
     vec3 v = normalize(-pos);
     float cos_v = max(dot(n, v), 0.0);
     float fresnel = kF0 + (1.0 - kF0) * pow(1.0 - cos_v, 5.0);
@@ -66,7 +68,7 @@ void main() {
     // Refraction: the scene seen through the water, displaced along the normal by
     // an amount that grows with the thickness (in metres at the surface's depth).
     vec2 shift = n.xy * u_fluid_color.w * sqrt(max(thickness, 0.0)) * 0.1 * u_camera.z / d;
-    vec2 uv = (gl_FragCoord.xy + shift) * u_viewport.zw;
+    vec2 uv = (frag + shift) * u_viewport.zw;
     float behind = eye_distance(texture(t_scene_depth, uv).r);
     vec3 background = behind > d ? texture(t_scene_color, uv).rgb : scene;
     vec3 transmit = exp(-u_absorption.rgb * thickness);

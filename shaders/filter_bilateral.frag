@@ -11,8 +11,8 @@ void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   ivec2 last = textureSize(t_depth, 0) - 1;
   float d0 = texelFetch(t_depth, p, 0).r;
-  if (d0 <= 0.0) {
-    o_depth = 0.0;
+  if (!is_fluid(d0)) {
+    o_depth = kNoFluid;
     return;
   }
   float radius_px = u_filter.x * u_camera.z / d0;
@@ -24,7 +24,7 @@ void main() {
   for (int k = -n; k <= n; ++k) {
     if (k == 0) continue;
     float s = texelFetch(t_depth, clamp(p + k * u_direction, ivec2(0), last), 0).r;
-    if (s <= 0.0) continue;
+    if (!is_fluid(s)) continue;
     float w = exp(-float(k * k) / two_sigma2) * exp(-(s - d0) * (s - d0) / two_range2);
     sum += s * w;
     weight_sum += w;

@@ -19,8 +19,8 @@ void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   ivec2 last = textureSize(t_depth, 0) - 1;
   float d0 = texelFetch(t_depth, p, 0).r;
-  if (d0 <= 0.0) {
-    o_depth = 0.0;
+  if (!is_fluid(d0)) {
+    o_depth = kNoFluid;
     return;
   }
   float radius_px = u_filter.x * u_camera.z / d0;
@@ -43,7 +43,7 @@ void main() {
                   texelFetch(t_depth, clamp(p - k * u_direction, ivec2(0), last), 0).r);
     vec2 weight = vec2(w);
     for (int side = 0; side < 2; ++side) {
-      float v = s[side] > 0.0 ? s[side] : 1e30;  // no fluid: infinitely far
+      float v = s[side];  // no fluid reads as kNoFluid: infinitely far
       if (v < near[side]) {
         weight = vec2(0.0);
       } else if (v > far[side]) {

@@ -6,8 +6,7 @@ bw_embed_files(TARGET bw_render_shaders NAMESPACE bw::render::shaders FILES
   ${CMAKE_CURRENT_LIST_DIR}/shadow.glsl
   ${CMAKE_CURRENT_LIST_DIR}/fullscreen.vert
   ${CMAKE_CURRENT_LIST_DIR}/sprite.vert
-  ${CMAKE_CURRENT_LIST_DIR}/sprite_depth.frag
-  ${CMAKE_CURRENT_LIST_DIR}/sprite_thickness.frag
+  ${CMAKE_CURRENT_LIST_DIR}/sprite_fluid.frag
   ${CMAKE_CURRENT_LIST_DIR}/sprite_shadow.vert
   ${CMAKE_CURRENT_LIST_DIR}/sprite_shadow.frag
   ${CMAKE_CURRENT_LIST_DIR}/mesh.vert
@@ -17,5 +16,6 @@ bw_embed_files(TARGET bw_render_shaders NAMESPACE bw::render::shaders FILES
   ${CMAKE_CURRENT_LIST_DIR}/sky.frag
   ${CMAKE_CURRENT_LIST_DIR}/filter_narrow_range.frag
   ${CMAKE_CURRENT_LIST_DIR}/filter_bilateral.frag
+  ${CMAKE_CURRENT_LIST_DIR}/blur_thickness.frag
   ${CMAKE_CURRENT_LIST_DIR}/normals.frag
   ${CMAKE_CURRENT_LIST_DIR}/composite.frag)

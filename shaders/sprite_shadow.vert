@@ -1,17 +1,13 @@
 #include "common.glsl"
-// A particle seen from the sun (orthographic): a square of the sphere's radius.
+// A particle seen from the sun (orthographic): a point sprite of the sphere's
+// diameter in shadow-map texels.
 layout(std430, binding = 1) readonly buffer Particles { float p_position[]; };
-out vec2 v_offset;        // position in the square, in radii
 flat out vec3 v_center;   // light view space
 
 void main() {
-  int i = gl_VertexID / 6;
-  int corner = gl_VertexID % 6;
+  int i = gl_VertexID;
   vec3 world = vec3(p_position[3 * i], p_position[3 * i + 1], p_position[3 * i + 2]);
-  vec3 c = (u_light_view * vec4(world, 1.0)).xyz;
-  const vec2 corners[6] = vec2[6](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, -1), vec2(1, 1), vec2(-1, 1));
-  vec2 k = corners[corner];
-  v_offset = k;
-  v_center = c;
-  gl_Position = u_light_proj * vec4(c + vec3(k * u_camera.w, 0.0), 1.0);
+  v_center = (u_light_view * vec4(world, 1.0)).xyz;
+  gl_Position = u_light_proj * vec4(v_center, 1.0);
+  gl_PointSize = u_misc.z;
 }

@@ -11,8 +11,8 @@ constexpr double kPi = 3.14159265358979323846;
 // a three-quarter view that shows the front and the top of walls standing across x.
 constexpr double kFitAzimuth = -30.0;
 constexpr double kFitElevation = 22.0;
-// Margin around the bounding sphere of a fitted view.
-constexpr double kFitMargin = 1.08;
+// Room around the box in a fitted view: 15% more distance than a tight fit.
+constexpr double kFitMargin = 1.15;
 
 double radians(double degrees) { return degrees * kPi / 180.0; }
 
@@ -59,15 +59,25 @@ Camera fit_camera(const Aabb& box, double fov_degrees, double aspect) {
   c.fov_degrees = fov_degrees;
   if (box.empty()) return c;
   const Vec3d center = 0.5 * (box.min + box.max);
-  const double radius = std::max(0.5 * box.extent().norm(), 1e-3);
-  // The sphere must fit the narrower of the two fields of view.
-  const double half_v = radians(fov_degrees) / 2;
-  const double half_h = std::atan(std::tan(half_v) * aspect);
-  const double distance = kFitMargin * radius / std::sin(std::min(half_v, half_h));
   const double az = radians(kFitAzimuth), el = radians(kFitElevation);
-  const Vec3d from(std::sin(az) * std::cos(el), -std::cos(az) * std::cos(el), std::sin(el));
+  const Vec3d back(std::sin(az) * std::cos(el), -std::cos(az) * std::cos(el), std::sin(el));
+  const Vec3d f = -back;
+  const Vec3d s = f.cross(Vec3d(0, 0, 1)).normalized();
+  const Vec3d u = s.cross(f);
+  const double tan_v = std::tan(radians(fov_degrees) / 2), tan_h = tan_v * aspect;
+  // Every corner inside the view: a corner at offset o from the centre, seen from
+  // distance D along f, sits at depth D + o.f and must satisfy |o.s| <= tan_h (D + o.f)
+  // and |o.u| <= tan_v (D + o.f).
+  double distance = 1e-3;
+  for (int i = 0; i < 8; ++i) {
+    const Vec3d corner((i & 1) ? box.max.x() : box.min.x(), (i & 2) ? box.max.y() : box.min.y(),
+                       (i & 4) ? box.max.z() : box.min.z());
+    const Vec3d o = corner - center;
+    distance = std::max({distance, std::abs(o.dot(s)) / tan_h - o.dot(f), std::abs(o.dot(u)) / tan_v - o.dot(f)});
+  }
+  distance *= kFitMargin;
   c.target = center;
-  c.position = center + distance * from;
+  c.position = center + distance * back;
   c.up = Vec3d(0, 0, 1);
   return c;
 }

@@ -16,9 +16,9 @@ Mat4d perspective(double fov_degrees, double aspect, double near, double far);
 // Orthographic projection of the box [l, r] x [b, t] x [-far, -near] of view space.
 Mat4d orthographic(double l, double r, double b, double t, double near, double far);
 
-// A camera that sees the whole box from the front-left and above (azimuth kFitAzimuth,
-// elevation kFitElevation, see camera.cpp), with the box's bounding sphere inside the
-// field of view. An empty box gives the default camera.
+// A camera that looks at the box's centre from the front-left and above (azimuth
+// kFitAzimuth, elevation kFitElevation, see camera.cpp), far enough that all eight
+// corners of the box are in view, with a margin. An empty box gives the default camera.
 Camera fit_camera(const Aabb& box, double fov_degrees, double aspect);
 
 // Near and far planes that hold the box as seen from the camera, with a floor on near

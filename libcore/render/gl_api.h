@@ -10,6 +10,7 @@
 #define BW_GL_FUNCTIONS(X)                                           \
   X(PFNGLGETSTRINGPROC, GetString)                                   \
   X(PFNGLGETINTEGERVPROC, GetIntegerv)                               \
+  X(PFNGLGETFLOATVPROC, GetFloatv)                                   \
   X(PFNGLGETERRORPROC, GetError)                                     \
   X(PFNGLENABLEPROC, Enable)                                         \
   X(PFNGLDISABLEPROC, Disable)                                       \

@@ -2,6 +2,7 @@
 
 #include <png.h>
 
+#include <csetjmp>
 #include <cstring>
 
 #include "common/atomic_file.h"
@@ -9,24 +10,50 @@
 
 namespace bw::render {
 
+namespace {
+
+// zlib level 2 with the "up" filter: a third of the time of libpng's defaults for
+// rendered images, at files a few percent larger.
+constexpr int kCompressionLevel = 2;
+
+void append_bytes(png_structp png, png_bytep data, png_size_t size) {
+  auto* out = static_cast<std::vector<std::uint8_t>*>(png_get_io_ptr(png));
+  out->insert(out->end(), data, data + size);
+}
+void flush_nothing(png_structp) {}
+void on_warning(png_structp, png_const_charp) {}
+
+}  // namespace
+
 std::vector<std::uint8_t> encode_png(const Image& image) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgb.size() != 3 * static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
     fail_run("encode_png: image of {} x {} holds {} bytes", image.width, image.height, image.rgb.size());
-  png_image png;
-  std::memset(&png, 0, sizeof png);
-  png.version = PNG_IMAGE_VERSION;
-  png.width = static_cast<png_uint_32>(image.width);
-  png.height = static_cast<png_uint_32>(image.height);
-  png.format = PNG_FORMAT_RGB;
-  png_alloc_size_t size = 0;
-  const png_int_32 stride = 3 * image.width;
-  if (!png_image_write_to_memory(&png, nullptr, &size, 0, image.rgb.data(), stride, nullptr))
-    fail_run("PNG encoding failed: {}", png.message);
-  std::vector<std::uint8_t> bytes(size);
-  if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, image.rgb.data(), stride, nullptr))
-    fail_run("PNG encoding failed: {}", png.message);
-  bytes.resize(size);
+  std::vector<std::uint8_t> bytes;
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, on_warning);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!info) {
+    png_destroy_write_struct(&png, nullptr);
+    fail_run("PNG encoding failed: out of memory");
+  }
+  // libpng reports errors by longjmp to here; nothing between here and the jump
+  // owns resources but `bytes`, which outlives it.
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    fail_run("PNG encoding failed");
+  }
+  {
+    png_set_write_fn(png, &bytes, append_bytes, flush_nothing);
+    png_set_compression_level(png, kCompressionLevel);
+    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_UP);
+    png_set_IHDR(png, info, static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height), 8,
+                 PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_BASE, PNG_FILTER_TYPE_BASE);
+    png_write_info(png, info);
+    for (int y = 0; y < image.height; ++y)
+      png_write_row(png, const_cast<png_bytep>(&image.rgb[3 * static_cast<std::size_t>(y) * image.width]));
+    png_write_end(png, nullptr);
+  }
+  png_destroy_write_struct(&png, &info);
   return bytes;
 }
 

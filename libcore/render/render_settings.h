@@ -25,10 +25,10 @@ struct Camera {
 
 struct Light {
   // Direction in which the sun's light travels (from the sun into the scene).
-  Vec3d direction = Vec3d(0.45, 0.6, -1.0);
-  Vec3d color = Vec3d(1.0, 0.96, 0.9);
-  double intensity = 2.6;    // sun radiance scale
-  double ambient = 0.55;     // sky light on surfaces facing up
+  Vec3d direction = Vec3d(-0.55, 0.45, -0.75);
+  Vec3d color = Vec3d(1.0, 0.95, 0.88);
+  double intensity = 1.7;    // sun radiance scale
+  double ambient = 0.4;      // sky light on surfaces facing up
   bool shadows = true;       // solids and water cast shadows on the ground and solids
 };
 
@@ -58,29 +58,29 @@ struct RenderSettings {
 
   // Water: Beer-Lambert absorption per metre of thickness (red, green, blue), and the
   // colour of the light scattered back inside the water.
-  Vec3d fluid_color = Vec3d(0.08, 0.32, 0.42);
-  Vec3d absorption = Vec3d(2.4, 0.75, 0.45);
+  Vec3d fluid_color = Vec3d(0.02, 0.14, 0.2);
+  Vec3d absorption = Vec3d(4.0, 1.3, 0.8);
   double refraction = 0.35;        // screen-space offset of refracted rays (x thickness^0.5)
   double specular = 1.0;           // sun glint strength
 
   // Depth smoothing (method.md 7.3).
   Filter filter = Filter::kNarrowRange;
-  double filter_radius = 3.0;      // world-space kernel radius in particle radii
+  double filter_radius = 6.0;      // world-space kernel radius in particle radii
   int filter_max_pixels = 24;      // cap on the kernel radius on screen
 
   // Sky (background and what water reflects): colour at the zenith and the horizon.
-  Vec3d sky_color = Vec3d(0.23, 0.44, 0.78);
-  Vec3d horizon_color = Vec3d(0.78, 0.86, 0.94);
+  Vec3d sky_color = Vec3d(0.06, 0.18, 0.48);
+  Vec3d horizon_color = Vec3d(0.5, 0.64, 0.8);
 
   // Ground plane z = ground_height (empty: just below the lowest particle or solid of
   // the first frame), a checkerboard of ground_tile metres.
   bool ground = true;
   std::optional<double> ground_height;
   double ground_tile = 0.25;
-  Vec3d ground_color = Vec3d(0.55, 0.52, 0.47);
+  Vec3d ground_color = Vec3d(0.32, 0.3, 0.27);
 
-  Vec3d solid_color = Vec3d(0.62, 0.6, 0.56);     // static solids
-  Vec3d body_color = Vec3d(0.66, 0.38, 0.27);     // dynamic solids and fragments
+  Vec3d solid_color = Vec3d(0.45, 0.44, 0.42);    // static solids
+  Vec3d body_color = Vec3d(0.5, 0.22, 0.13);     // dynamic solids and fragments
 
   View view = View::kShaded;
 

@@ -20,7 +20,7 @@ namespace {
 // Side of the sun's shadow maps (texels). Solids are few triangles, so their map can
 // be fine; the water's map is drawn from every particle, so it is coarser.
 constexpr int kSolidShadowSize = 2048;
-constexpr int kFluidShadowSize = 1024;
+constexpr int kFluidShadowSize = 512;
 // The ground plane spans this many times the scene's size around its centre: far
 // enough that its edge hides in the haze at the horizon.
 constexpr double kGroundExtent = 60.0;
@@ -34,15 +34,22 @@ constexpr double kClampRatio = 1.0;
 // Bilateral filter: width of the Gaussian on depth differences, in particle radii.
 constexpr double kBilateralRangeRatio = 1.0;
 
+// Every layer but the final image is this many pixels larger on each side: a point
+// sprite is dropped when its centre leaves the view, so spheres up to this radius
+// that straddle the border stay whole, and the filters see past the edge.
+constexpr int kGuardPixels = 16;
+// Eye distance where there is no fluid (shaders/common.glsl kNoFluid).
+constexpr float kNoFluid = 1e30f;
+
 constexpr double kPi = 3.14159265358979323846;
 
 // Mirrors `uniform Frame` of shaders/common.glsl (std140: mat4 and vec4 only).
 struct FrameUniforms {
   float view[16], proj[16], inv_view[16], light_view[16], light_proj[16];
   float viewport[4], camera[4], light_dir[4], light_color[4], sky_color[4], horizon_color[4];
-  float ground_color[4], ground[4], fluid_color[4], absorption[4], camera_position[4], filter[4];
+  float ground_color[4], ground[4], fluid_color[4], absorption[4], camera_position[4], filter[4], misc[4];
 };
-static_assert(sizeof(FrameUniforms) == (5 * 16 + 12 * 4) * sizeof(float), "std140 layout");
+static_assert(sizeof(FrameUniforms) == (5 * 16 + 13 * 4) * sizeof(float), "std140 layout");
 
 void put(float* out, const Mat4d& m) {
   for (int c = 0; c < 4; ++c)
@@ -213,14 +220,16 @@ void check_gl(const char* where) {
 
 struct Renderer::Impl {
   RenderSettings settings;
-  int width = 0, height = 0;
+  int width = 0, height = 0;        // the image
+  int full_width = 0, full_height = 0;  // the layers, with the guard band
+  float max_point_size = 64;
 
-  Program sky, mesh, mesh_shadow, sprite_depth, sprite_thickness, sprite_shadow, filter_narrow, filter_bilateral,
+  Program sky, mesh, mesh_shadow, sprite_fluid, sprite_shadow, filter_narrow, filter_bilateral, blur_thickness,
       normals, composite;
 
-  Texture scene_color, scene_depth, fluid_depth, fluid_zbuffer, thickness, filtered[2], normal_map, final_color;
+  Texture scene_color, scene_depth, fluid_depth, thickness, thickness_blur, filtered[2], normal_map, final_color;
   Texture shadow_depth, shadow_thickness, shadow_front;
-  Framebuffer scene_fb, fluid_depth_fb, thickness_fb, filter_fb[2], normals_fb, final_fb, shadow_depth_fb,
+  Framebuffer scene_fb, fluid_fb, filter_fb[2], thickness_fb[2], normals_fb, final_fb, shadow_depth_fb,
       shadow_fluid_fb;
   GLuint smoothed = 0;  // the texture holding the smoothed depth after the last render
 
@@ -257,24 +266,24 @@ void Renderer::Impl::build() {
   sky = Program("fullscreen.vert", "sky.frag");
   mesh = Program("mesh.vert", "mesh.frag");
   mesh_shadow = Program("mesh_shadow.vert", "empty.frag");
-  sprite_depth = Program("sprite.vert", "sprite_depth.frag");
-  sprite_thickness = Program("sprite.vert", "sprite_thickness.frag");
+  sprite_fluid = Program("sprite.vert", "sprite_fluid.frag");
   sprite_shadow = Program("sprite_shadow.vert", "sprite_shadow.frag");
   filter_narrow = Program("fullscreen.vert", "filter_narrow_range.frag");
   filter_bilateral = Program("fullscreen.vert", "filter_bilateral.frag");
+  blur_thickness = Program("fullscreen.vert", "blur_thickness.frag");
   normals = Program("fullscreen.vert", "normals.frag");
   composite = Program("fullscreen.vert", "composite.frag");
 
-  const int w = width, h = height;
+  const int w = full_width, h = full_height;
   scene_color = Texture(GL_RGBA16F, w, h, true);
   scene_depth = Texture(GL_DEPTH_COMPONENT32F, w, h, false);
   fluid_depth = Texture(GL_R32F, w, h, false);
-  fluid_zbuffer = Texture(GL_DEPTH_COMPONENT32F, w, h, false);
   thickness = Texture(GL_R32F, w, h, false);
+  thickness_blur = Texture(GL_R32F, w, h, false);
   filtered[0] = Texture(GL_R32F, w, h, false);
   filtered[1] = Texture(GL_R32F, w, h, false);
   normal_map = Texture(GL_RGBA16F, w, h, false);
-  final_color = Texture(GL_RGBA8, w, h, false);
+  final_color = Texture(GL_RGBA8, width, height, false);
   shadow_depth = Texture(GL_DEPTH_COMPONENT32F, kSolidShadowSize, kSolidShadowSize, true);
   gl::TextureParameteri(shadow_depth.id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
   gl::TextureParameteri(shadow_depth.id, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
@@ -282,8 +291,9 @@ void Renderer::Impl::build() {
   shadow_front = Texture(GL_R32F, kFluidShadowSize, kFluidShadowSize, false);
 
   scene_fb = Framebuffer({scene_color.id}, scene_depth.id, "scene");
-  fluid_depth_fb = Framebuffer({fluid_depth.id}, fluid_zbuffer.id, "fluid depth");
-  thickness_fb = Framebuffer({thickness.id}, 0, "thickness");
+  fluid_fb = Framebuffer({fluid_depth.id, thickness.id}, 0, "fluid");
+  thickness_fb[0] = Framebuffer({thickness_blur.id}, 0, "thickness");
+  thickness_fb[1] = Framebuffer({thickness.id}, 0, "thickness");
   filter_fb[0] = Framebuffer({filtered[0].id}, 0, "filter");
   filter_fb[1] = Framebuffer({filtered[1].id}, 0, "filter");
   normals_fb = Framebuffer({normal_map.id}, 0, "normals");
@@ -296,6 +306,10 @@ void Renderer::Impl::build() {
   gl::CreateVertexArrays(1, &vao_ground);
   set_mesh_layout(vao_mesh, solid_vertices.id);
   set_mesh_layout(vao_ground, ground_vertices.id);
+  float range[2] = {1, 64};
+  gl::GetFloatv(GL_POINT_SIZE_RANGE, range);
+  max_point_size = range[1];
+  gl::Enable(GL_PROGRAM_POINT_SIZE);
   check_gl("set-up");
 }
 
@@ -311,6 +325,8 @@ Renderer::Renderer(GlContext& context, const RenderSettings& settings) : impl_(s
   impl_->settings = settings;
   impl_->width = settings.width;
   impl_->height = settings.height;
+  impl_->full_width = settings.width + 2 * kGuardPixels;
+  impl_->full_height = settings.height + 2 * kGuardPixels;
   impl_->build();
 }
 
@@ -326,6 +342,7 @@ Image Renderer::render(const RenderInput& in) {
   Impl& r = *impl_;
   const RenderSettings& s = r.settings;
   const int w = r.width, h = r.height;
+  const int fw = r.full_width, fh = r.full_height;
   if (!(in.particle_radius > 0)) fail_run("render: particle radius {} is not positive", in.particle_radius);
   r.times.clear();
   r.mark = std::chrono::steady_clock::now();
@@ -385,10 +402,13 @@ Image Renderer::render(const RenderInput& in) {
     clip_planes(cam, content, content_near, content_far);
     near = std::max(std::min(near, content_near), far * 1e-5);
   }
-  const double aspect = static_cast<double>(w) / h;
+  // The layers see a little more than the image: the same focal length over the
+  // guard band.
+  const double half_tan = std::tan(cam.fov_degrees * kPi / 360.0);
+  const double full_fov = 360.0 / kPi * std::atan(half_tan * fh / h);
   const Mat4d view = look_at(cam.position, cam.target, cam.up);
-  const Mat4d proj = perspective(cam.fov_degrees, aspect, near, far);
-  const double focal_px = 0.5 * h / std::tan(cam.fov_degrees * kPi / 360.0);
+  const Mat4d proj = perspective(full_fov, static_cast<double>(fw) / fh, near, far);
+  const double focal_px = 0.5 * h / half_tan;
 
   // Sun: an orthographic view along the light that holds the content and the
   // shadows it throws onto the ground.
@@ -433,7 +453,7 @@ Image Renderer::render(const RenderInput& in) {
   put(u.inv_view, Mat4d(view.inverse()));
   put(u.light_view, light_view);
   put(u.light_proj, light_proj);
-  put(u.viewport, w, h, 1.0 / w, 1.0 / h);
+  put(u.viewport, fw, fh, 1.0 / fw, 1.0 / fh);
   put(u.camera, near, far, focal_px, rad);
   put(u.light_dir, light_dir, s.light.intensity);
   put(u.light_color, s.light.color, s.light.ambient);
@@ -447,14 +467,17 @@ Image Renderer::render(const RenderInput& in) {
   const bool bilateral = s.filter == Filter::kBilateral;
   put(u.filter, s.filter_radius * rad, s.filter_max_pixels,
       (bilateral ? kBilateralRangeRatio : kRangeRatio) * rad, kClampRatio * rad);
+  put(u.misc, kGuardPixels, r.max_point_size, std::min<double>(rad * kFluidShadowSize / half_side, r.max_point_size), 0);
   r.uniforms.upload(&u, sizeof u);
   gl::BindBufferBase(GL_UNIFORM_BUFFER, 0, r.uniforms.id);
   gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, r.particles.id);
 
-  const GLsizei sprite_vertices = static_cast<GLsizei>(6 * in.count);
+  const GLsizei sprite_vertices = static_cast<GLsizei>(in.count);
   const float zero[4] = {0, 0, 0, 0};
   const float one = 1.0f;
   const float far_front[4] = {1, 1, 1, 1};
+
+  r.lap("upload");
 
   // ---- 0. shadow maps
   gl::Disable(GL_BLEND);
@@ -470,6 +493,7 @@ Image Renderer::render(const RenderInput& in) {
     gl::DepthMask(GL_TRUE);
     r.mesh_shadow.use();
     r.draw_triangles(r.vao_mesh, solid_vertex_count);
+    r.lap("solid shadow map");
     if (in.count > 0) {
       gl::BindFramebuffer(GL_FRAMEBUFFER, r.shadow_fluid_fb.id);
       gl::Viewport(0, 0, kFluidShadowSize, kFluidShadowSize);
@@ -481,15 +505,15 @@ Image Renderer::render(const RenderInput& in) {
       gl::BlendFunci(1, GL_ONE, GL_ONE);
       r.sprite_shadow.use();
       gl::BindVertexArray(r.vao_empty);
-      gl::DrawArrays(GL_TRIANGLES, 0, sprite_vertices);
+      gl::DrawArrays(GL_POINTS, 0, sprite_vertices);
       gl::Disable(GL_BLEND);
     }
   }
 
-  r.lap("upload and shadow maps");
+  r.lap("water shadow map");
 
   // ---- 1. scene: sky, ground, solids
-  gl::Viewport(0, 0, w, h);
+  gl::Viewport(0, 0, fw, fh);
   gl::BindFramebuffer(GL_FRAMEBUFFER, r.scene_fb.id);
   gl::ClearNamedFramebufferfv(r.scene_fb.id, GL_DEPTH, 0, &one);
   gl::Disable(GL_DEPTH_TEST);
@@ -510,34 +534,25 @@ Image Renderer::render(const RenderInput& in) {
 
   r.lap("scene");
 
-  // ---- 2. fluid depth
-  gl::BindFramebuffer(GL_FRAMEBUFFER, r.fluid_depth_fb.id);
-  gl::ClearNamedFramebufferfv(r.fluid_depth_fb.id, GL_COLOR, 0, zero);
-  gl::ClearNamedFramebufferfv(r.fluid_depth_fb.id, GL_DEPTH, 0, &one);
+  // ---- 2. fluid depth and thickness, one pass
+  const float no_fluid[4] = {kNoFluid, kNoFluid, kNoFluid, kNoFluid};
+  gl::Disable(GL_DEPTH_TEST);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, r.fluid_fb.id);
+  gl::ClearNamedFramebufferfv(r.fluid_fb.id, GL_COLOR, 0, no_fluid);
+  gl::ClearNamedFramebufferfv(r.fluid_fb.id, GL_COLOR, 1, zero);
   gl::BindTextureUnit(0, r.scene_depth.id);
   if (in.count > 0) {
-    r.sprite_depth.use();
-    gl::BindVertexArray(r.vao_empty);
-    gl::DrawArrays(GL_TRIANGLES, 0, sprite_vertices);
-  }
-
-  r.lap("fluid depth");
-
-  // ---- 3. thickness
-  gl::Disable(GL_DEPTH_TEST);
-  gl::BindFramebuffer(GL_FRAMEBUFFER, r.thickness_fb.id);
-  gl::ClearNamedFramebufferfv(r.thickness_fb.id, GL_COLOR, 0, zero);
-  if (in.count > 0) {
     gl::Enable(GL_BLEND);
-    gl::BlendEquation(GL_FUNC_ADD);
-    gl::BlendFunc(GL_ONE, GL_ONE);
-    r.sprite_thickness.use();
+    gl::BlendEquationi(0, GL_MIN);
+    gl::BlendFunci(0, GL_ONE, GL_ONE);
+    gl::BlendEquationi(1, GL_FUNC_ADD);
+    gl::BlendFunci(1, GL_ONE, GL_ONE);
+    r.sprite_fluid.use();
     gl::BindVertexArray(r.vao_empty);
-    gl::DrawArrays(GL_TRIANGLES, 0, sprite_vertices);
+    gl::DrawArrays(GL_POINTS, 0, sprite_vertices);
     gl::Disable(GL_BLEND);
   }
-
-  r.lap("thickness");
+  r.lap("fluid depth and thickness");
 
   // ---- 4. smoothing and normals
   r.smoothed = r.fluid_depth.id;
@@ -556,6 +571,21 @@ Image Renderer::render(const RenderInput& in) {
     gl::DrawArrays(GL_TRIANGLES, 0, 3);
     r.smoothed = r.filtered[1].id;
   }
+  if (in.count > 0) {
+    // Thickness: thickness -> thickness_blur -> thickness.
+    const GLint dir = gl::GetUniformLocation(r.blur_thickness.id(), "u_direction");
+    r.blur_thickness.use();
+    gl::BindVertexArray(r.vao_empty);
+    gl::BindTextureUnit(1, r.fluid_depth.id);
+    gl::BindFramebuffer(GL_FRAMEBUFFER, r.thickness_fb[0].id);
+    gl::ProgramUniform2i(r.blur_thickness.id(), dir, 1, 0);
+    gl::BindTextureUnit(0, r.thickness.id);
+    gl::DrawArrays(GL_TRIANGLES, 0, 3);
+    gl::BindFramebuffer(GL_FRAMEBUFFER, r.thickness_fb[1].id);
+    gl::ProgramUniform2i(r.blur_thickness.id(), dir, 0, 1);
+    gl::BindTextureUnit(0, r.thickness_blur.id);
+    gl::DrawArrays(GL_TRIANGLES, 0, 3);
+  }
   r.lap("smoothing");
   gl::BindFramebuffer(GL_FRAMEBUFFER, r.normals_fb.id);
   r.normals.use();
@@ -567,6 +597,7 @@ Image Renderer::render(const RenderInput& in) {
 
   // ---- 5. composite
   gl::BindFramebuffer(GL_FRAMEBUFFER, r.final_fb.id);
+  gl::Viewport(0, 0, w, h);
   r.composite.use();
   gl::BindTextureUnit(0, r.scene_color.id);
   gl::BindTextureUnit(1, r.scene_depth.id);
@@ -608,7 +639,7 @@ FluidLayers Renderer::read_fluid_layers() const {
   auto read = [&](GLuint texture, int channels, GLenum format, std::vector<float>& out) {
     std::vector<float> raw(n * channels);
     gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
-    gl::GetTextureSubImage(texture, 0, 0, 0, 0, r.width, r.height, 1, format, GL_FLOAT,
+    gl::GetTextureSubImage(texture, 0, kGuardPixels, kGuardPixels, 0, r.width, r.height, 1, format, GL_FLOAT,
                            static_cast<GLsizei>(raw.size() * sizeof(float)), raw.data());
     out.resize(n * (channels == 4 ? 3 : 1));
     const int keep = channels == 4 ? 3 : 1;
@@ -620,6 +651,9 @@ FluidLayers Renderer::read_fluid_layers() const {
   };
   read(r.fluid_depth.id, 1, GL_RED, layers.depth);
   read(r.smoothed ? r.smoothed : r.fluid_depth.id, 1, GL_RED, layers.smoothed_depth);
+  for (std::vector<float>* v : {&layers.depth, &layers.smoothed_depth})
+    for (float& d : *v)
+      if (d >= 0.5f * kNoFluid) d = 0;
   read(r.thickness.id, 1, GL_RED, layers.thickness);
   read(r.normal_map.id, 4, GL_RGBA, layers.normals);
   check_gl("reading the fluid layers");

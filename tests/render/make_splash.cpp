@@ -16,9 +16,9 @@ int main(int argc, char** argv) {
   const std::string dir = argv[1];
   const std::size_t particles = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 120000;
   std::filesystem::create_directories(dir + "/frames");
-  bw::render::test::write_wall_run(std::filesystem::absolute(dir).string());
+  bw::render::test::write_wall_run(std::filesystem::absolute(dir).string(), bw::Vec3d::Zero(), true);
   const bw::FrameData f = bw::render::test::splash_frame(particles);
   bw::write_frame(f, bw::frame_file_name(dir + "/frames", 0));
-  std::printf("%s: %zu particles\n", dir.c_str(), f.fluid_count());
+  std::fprintf(stderr, "%s: %zu particles\n", dir.c_str(), f.fluid_count());
   return 0;
 }

@@ -52,19 +52,23 @@ FrameData splash_frame(std::size_t particles, int frame_number) {
   return f;
 }
 
-Aabb write_wall_run(const std::string& dir, const Vec3d& translation) {
-  const Vec3d lo(-1.0, 0.45, 0.0), hi(1.0, 0.6, 1.0);
-  const SampledSolid wall = sample::sample_mesh(mesh::box(lo, hi), {0.05, false, "box", 1.0});
-  write_particles(wall, dir + "/wall.h5", "synthetic");
+Aabb write_wall_run(const std::string& dir, const Vec3d& translation, bool tank) {
+  const Vec3d lo(-1.0, 0.5, 0.0), hi(1.0, 0.65, 1.0);
   RunRecord run;
   run.tool = "synthetic";
   run.status = "complete";
-  SolidRecord solid;
-  solid.name = "wall";
-  solid.particles = dir + "/wall.h5";
-  solid.kind = "static";
-  solid.translation = translation;
-  run.solids.push_back(solid);
+  auto add_solid = [&](const std::string& name, TriMesh mesh, const Vec3d& shift) {
+    const SampledSolid sampled = sample::sample_mesh(std::move(mesh), {0.05, false, name, 1.0});
+    write_particles(sampled, dir + "/" + name + ".h5", "synthetic");
+    SolidRecord solid;
+    solid.name = name;
+    solid.particles = dir + "/" + name + ".h5";
+    solid.kind = "static";
+    solid.translation = shift;
+    run.solids.push_back(solid);
+  };
+  add_solid("wall", mesh::box(lo, hi), translation);
+  if (tank) add_solid("tank", mesh::open_box(Vec3d(-1.0, -0.75, 0.0), Vec3d(1.0, 0.45, 0.4), 0.05), Vec3d::Zero());
   write_run(run, dir + "/run.h5");
   Aabb box;
   box.add(lo + translation);

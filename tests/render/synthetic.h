@@ -25,8 +25,10 @@ void add_block(FrameData& frame, const Vec3d& min, const Vec3d& max, double spac
 FrameData splash_frame(std::size_t particles, int frame_number = 0);
 
 // Writes a run file `dir`/run.h5 with one static solid: a wall (box mesh sampled at
-// 0.05 m into `dir`/wall.h5) spanning x in [-1, 1], y in [0.45, 0.6], z in [0, 1]
-// after the given translation. Returns the wall's bounds in the world.
-Aabb write_wall_run(const std::string& dir, const Vec3d& translation = Vec3d::Zero());
+// 0.05 m into `dir`/wall.h5) spanning x in [-1, 1], y in [0.5, 0.65], z in [0, 1]
+// after the given translation. With `tank`, a second static solid: an open tank
+// around the splash's pool (inside x in [-1, 1], y in [-0.75, 0.45], z from 0, rim
+// at 0.4 m, walls 5 cm), in `dir`/tank.h5. Returns the wall's bounds in the world.
+Aabb write_wall_run(const std::string& dir, const Vec3d& translation = Vec3d::Zero(), bool tank = false);
 
 }  // namespace bw::render::test
