@@ -1,10 +1,12 @@
 #include "common.glsl"
 #include "sky.glsl"
 #include "shadow.glsl"
+#include "tone.glsl"
 // The water over the scene: Fresnel (Schlick) mix of the reflected sky and of the
 // scene refracted through the water, attenuated by Beer-Lambert absorption along
 // the thickness, plus the light scattered inside and the sun's specular glint.
-// Tone mapping and sRGB encoding happen here, once, for the whole image.
+// Drawn only over the fluid mask; composite_scene.frag draws the rest. Tone mapping
+// and sRGB encoding are in tone.glsl, shared by both.
 layout(binding = 0) uniform sampler2D t_scene_color;
 layout(binding = 1) uniform sampler2D t_scene_depth;
 layout(binding = 2) uniform sampler2D t_fluid_depth;
@@ -15,22 +17,8 @@ layout(location = 0) out vec4 o_color;
 // Reflectance of water at normal incidence: ((1.33 - 1) / (1.33 + 1))^2.
 const float kF0 = 0.02;
 
-// Identity below the knee, a soft shoulder above it, so bright glints saturate
-// without changing the colours of the sky and the solids.
-vec3 tone(vec3 c) {
-  const float knee = 0.8;
-  vec3 over = max(c - knee, 0.0);
-  return min(c, vec3(knee)) + (1.0 - knee) * (1.0 - exp(-over / (1.0 - knee)));
-}
-
-vec3 encode_srgb(vec3 c) {
-  c = clamp(c, 0.0, 1.0);
-  return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
-}
-
 void main() {
-  // The final image is the inside of the guard band of every other layer.
-  vec2 frag = gl_FragCoord.xy + u_misc.x;
+  vec2 frag = gl_FragCoord.xy;
   ivec2 p = ivec2(frag);
   vec3 scene = texelFetch(t_scene_color, p, 0).rgb;
   float scene_d = eye_distance(texelFetch(t_scene_depth, p, 0).r);

@@ -18,4 +18,6 @@ bw_embed_files(TARGET bw_render_shaders NAMESPACE bw::render::shaders FILES
   ${CMAKE_CURRENT_LIST_DIR}/filter_bilateral.frag
   ${CMAKE_CURRENT_LIST_DIR}/blur_thickness.frag
   ${CMAKE_CURRENT_LIST_DIR}/normals.frag
+  ${CMAKE_CURRENT_LIST_DIR}/tone.glsl
+  ${CMAKE_CURRENT_LIST_DIR}/composite_scene.frag
   ${CMAKE_CURRENT_LIST_DIR}/composite.frag)

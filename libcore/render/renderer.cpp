@@ -137,6 +137,9 @@ class Program {
   GLuint id() const { return id_; }
   void use() const { gl::UseProgram(id_); }
   void set(const char* name, int value) const { gl::ProgramUniform1i(id_, gl::GetUniformLocation(id_, name), value); }
+  void set(const char* name, float value) const {
+    gl::ProgramUniform1f(id_, gl::GetUniformLocation(id_, name), value);
+  }
 
  private:
   GLuint id_ = 0;
@@ -225,9 +228,10 @@ struct Renderer::Impl {
   float max_point_size = 64;
 
   Program sky, mesh, mesh_shadow, sprite_fluid, sprite_shadow, filter_narrow, filter_bilateral, blur_thickness,
-      normals, composite;
+      normals, composite_scene, composite;
 
-  Texture scene_color, scene_depth, fluid_depth, thickness, thickness_blur, filtered[2], normal_map, final_color;
+  Texture scene_color, scene_depth, fluid_depth, fluid_mask, thickness, thickness_blur, filtered[2], normal_map,
+      final_color;
   Texture shadow_depth, shadow_thickness, shadow_front;
   Framebuffer scene_fb, fluid_fb, filter_fb[2], thickness_fb[2], normals_fb, final_fb, shadow_depth_fb,
       shadow_fluid_fb;
@@ -272,18 +276,21 @@ void Renderer::Impl::build() {
   filter_bilateral = Program("fullscreen.vert", "filter_bilateral.frag");
   blur_thickness = Program("fullscreen.vert", "blur_thickness.frag");
   normals = Program("fullscreen.vert", "normals.frag");
+  composite_scene = Program("fullscreen.vert", "composite_scene.frag");
   composite = Program("fullscreen.vert", "composite.frag");
+  sky.set("u_z", 1.0f);
 
   const int w = full_width, h = full_height;
   scene_color = Texture(GL_RGBA16F, w, h, true);
   scene_depth = Texture(GL_DEPTH_COMPONENT32F, w, h, false);
   fluid_depth = Texture(GL_R32F, w, h, false);
+  fluid_mask = Texture(GL_DEPTH_COMPONENT32F, w, h, false);
   thickness = Texture(GL_R32F, w, h, false);
   thickness_blur = Texture(GL_R32F, w, h, false);
   filtered[0] = Texture(GL_R32F, w, h, false);
   filtered[1] = Texture(GL_R32F, w, h, false);
   normal_map = Texture(GL_RGBA16F, w, h, false);
-  final_color = Texture(GL_RGBA8, width, height, false);
+  final_color = Texture(GL_RGBA8, w, h, false);
   shadow_depth = Texture(GL_DEPTH_COMPONENT32F, kSolidShadowSize, kSolidShadowSize, true);
   gl::TextureParameteri(shadow_depth.id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
   gl::TextureParameteri(shadow_depth.id, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
@@ -291,13 +298,15 @@ void Renderer::Impl::build() {
   shadow_front = Texture(GL_R32F, kFluidShadowSize, kFluidShadowSize, false);
 
   scene_fb = Framebuffer({scene_color.id}, scene_depth.id, "scene");
-  fluid_fb = Framebuffer({fluid_depth.id, thickness.id}, 0, "fluid");
-  thickness_fb[0] = Framebuffer({thickness_blur.id}, 0, "thickness");
-  thickness_fb[1] = Framebuffer({thickness.id}, 0, "thickness");
-  filter_fb[0] = Framebuffer({filtered[0].id}, 0, "filter");
-  filter_fb[1] = Framebuffer({filtered[1].id}, 0, "filter");
-  normals_fb = Framebuffer({normal_map.id}, 0, "normals");
-  final_fb = Framebuffer({final_color.id}, 0, "final");
+  // Every pass after the particles' writes fluid pixels only: the fluid mask is the
+  // depth buffer of their framebuffers.
+  fluid_fb = Framebuffer({fluid_depth.id, thickness.id}, fluid_mask.id, "fluid");
+  thickness_fb[0] = Framebuffer({thickness_blur.id}, fluid_mask.id, "thickness");
+  thickness_fb[1] = Framebuffer({thickness.id}, fluid_mask.id, "thickness");
+  filter_fb[0] = Framebuffer({filtered[0].id}, fluid_mask.id, "filter");
+  filter_fb[1] = Framebuffer({filtered[1].id}, fluid_mask.id, "filter");
+  normals_fb = Framebuffer({normal_map.id}, fluid_mask.id, "normals");
+  final_fb = Framebuffer({final_color.id}, fluid_mask.id, "final");
   shadow_depth_fb = Framebuffer({}, shadow_depth.id, "shadow");
   shadow_fluid_fb = Framebuffer({shadow_thickness.id, shadow_front.id}, 0, "water shadow");
 
@@ -480,6 +489,7 @@ Image Renderer::render(const RenderInput& in) {
   r.lap("upload");
 
   // ---- 0. shadow maps
+  gl::DepthMask(GL_TRUE);  // depth clears obey the mask, and the last frame left it off
   gl::Disable(GL_BLEND);
   gl::Disable(GL_CULL_FACE);
   gl::ClearNamedFramebufferfv(r.shadow_depth_fb.id, GL_DEPTH, 0, &one);
@@ -512,17 +522,13 @@ Image Renderer::render(const RenderInput& in) {
 
   r.lap("water shadow map");
 
-  // ---- 1. scene: sky, ground, solids
+  // ---- 1. scene: ground and solids, then the sky where nothing was drawn
   gl::Viewport(0, 0, fw, fh);
   gl::BindFramebuffer(GL_FRAMEBUFFER, r.scene_fb.id);
+  gl::DepthMask(GL_TRUE);
   gl::ClearNamedFramebufferfv(r.scene_fb.id, GL_DEPTH, 0, &one);
-  gl::Disable(GL_DEPTH_TEST);
-  r.sky.use();
-  gl::BindVertexArray(r.vao_empty);
-  gl::DrawArrays(GL_TRIANGLES, 0, 3);
   gl::Enable(GL_DEPTH_TEST);
   gl::DepthFunc(GL_LESS);
-  gl::DepthMask(GL_TRUE);
   gl::BindTextureUnit(4, r.shadow_depth.id);
   gl::BindTextureUnit(5, r.shadow_thickness.id);
   gl::BindTextureUnit(6, r.shadow_front.id);
@@ -531,15 +537,21 @@ Image Renderer::render(const RenderInput& in) {
   r.draw_triangles(r.vao_ground, ground.size() / 9);
   r.mesh.set("u_is_ground", 0);
   r.draw_triangles(r.vao_mesh, solid_vertex_count);
-
+  gl::DepthFunc(GL_LEQUAL);
+  gl::DepthMask(GL_FALSE);
+  r.sky.use();
+  gl::BindVertexArray(r.vao_empty);
+  gl::DrawArrays(GL_TRIANGLES, 0, 3);
   r.lap("scene");
 
   // ---- 2. fluid depth and thickness, one pass
   const float no_fluid[4] = {kNoFluid, kNoFluid, kNoFluid, kNoFluid};
-  gl::Disable(GL_DEPTH_TEST);
   gl::BindFramebuffer(GL_FRAMEBUFFER, r.fluid_fb.id);
+  gl::DepthMask(GL_TRUE);
+  gl::DepthFunc(GL_ALWAYS);
   gl::ClearNamedFramebufferfv(r.fluid_fb.id, GL_COLOR, 0, no_fluid);
   gl::ClearNamedFramebufferfv(r.fluid_fb.id, GL_COLOR, 1, zero);
+  gl::ClearNamedFramebufferfv(r.fluid_fb.id, GL_DEPTH, 0, &one);
   gl::BindTextureUnit(0, r.scene_depth.id);
   if (in.count > 0) {
     gl::Enable(GL_BLEND);
@@ -553,6 +565,12 @@ Image Renderer::render(const RenderInput& in) {
     gl::Disable(GL_BLEND);
   }
   r.lap("fluid depth and thickness");
+  // From here on, full-screen passes at depth 0.5 reach the fluid pixels only.
+  gl::DepthMask(GL_FALSE);
+  gl::DepthFunc(GL_GREATER);
+  for (const Framebuffer* fb : {&r.filter_fb[0], &r.filter_fb[1]})
+    gl::ClearNamedFramebufferfv(fb->id, GL_COLOR, 0, no_fluid);
+  gl::ClearNamedFramebufferfv(r.normals_fb.id, GL_COLOR, 0, zero);
 
   // ---- 4. smoothing and normals
   r.smoothed = r.fluid_depth.id;
@@ -597,7 +615,11 @@ Image Renderer::render(const RenderInput& in) {
 
   // ---- 5. composite
   gl::BindFramebuffer(GL_FRAMEBUFFER, r.final_fb.id);
-  gl::Viewport(0, 0, w, h);
+  gl::BindTextureUnit(0, r.scene_color.id);
+  gl::Disable(GL_DEPTH_TEST);
+  r.composite_scene.use();
+  gl::DrawArrays(GL_TRIANGLES, 0, 3);
+  gl::Enable(GL_DEPTH_TEST);
   r.composite.use();
   gl::BindTextureUnit(0, r.scene_color.id);
   gl::BindTextureUnit(1, r.scene_depth.id);
@@ -612,7 +634,7 @@ Image Renderer::render(const RenderInput& in) {
   std::vector<std::uint8_t> rgba(4 * static_cast<std::size_t>(w) * h);
   gl::BindFramebuffer(GL_READ_FRAMEBUFFER, r.final_fb.id);
   gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl::ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  gl::ReadPixels(kGuardPixels, kGuardPixels, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
   check_gl("glReadPixels");
   Image image;
   image.width = w;
