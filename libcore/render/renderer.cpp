@@ -21,7 +21,7 @@ namespace {
 // be fine; the water's map is drawn from every particle, so it is coarser.
 constexpr int kSolidShadowSize = 2048;
 constexpr int kFluidShadowSize = 512;
-// The ground plane spans this many times the scene's size around its centre: far
+// The ground plane spans this many camera distances around the camera's target: far
 // enough that its edge hides in the haze at the horizon.
 constexpr double kGroundExtent = 60.0;
 // Haze: the ground fades to the horizon colour over this many camera distances.
@@ -377,12 +377,13 @@ Image Renderer::render(const RenderInput& in) {
   }
   const Camera& cam = in.camera;
   const double cam_distance = (cam.target - cam.position).norm();
-  const double scene_size = std::max(content.empty() ? cam_distance : content.extent().norm(), 1e-3);
 
+  // The ground depends on the camera only, so that what stands on it changes no
+  // pixel of it but those it covers or shades.
   std::vector<float> ground;
   if (s.ground) {
-    const Vec3d c = content.empty() ? cam.target : Vec3d(0.5 * (content.min + content.max));
-    const double half = kGroundExtent * std::max(scene_size, cam_distance);
+    const Vec3d c = cam.target;
+    const double half = kGroundExtent * cam_distance;
     const double gz = in.ground_height;
     const double corners[6][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, -1}, {1, 1}, {-1, 1}};
     for (const auto& k : corners) {
@@ -570,6 +571,8 @@ Image Renderer::render(const RenderInput& in) {
   gl::DepthFunc(GL_GREATER);
   for (const Framebuffer* fb : {&r.filter_fb[0], &r.filter_fb[1]})
     gl::ClearNamedFramebufferfv(fb->id, GL_COLOR, 0, no_fluid);
+  // The blur reads its neighbours outside the mask too: no values of an earlier frame.
+  gl::ClearNamedFramebufferfv(r.thickness_fb[0].id, GL_COLOR, 0, zero);
   gl::ClearNamedFramebufferfv(r.normals_fb.id, GL_COLOR, 0, zero);
 
   // ---- 4. smoothing and normals

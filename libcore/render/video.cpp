@@ -69,7 +69,7 @@ VideoWriter::VideoWriter(const std::string& path, double fps) {
   // yuv420p (what players expect) needs even sides; pad by one pixel when odd.
   const std::string command = fmt::format(
       "{} -hide_banner -loglevel error -nostdin -y -f image2pipe -c:v png -framerate {} -i - "
-      "-vf pad=ceil(iw/2)*2:ceil(ih/2)*2 -c:v libx264 -pix_fmt yuv420p -crf 18 -f {} {}",
+      "-vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -c:v libx264 -pix_fmt yuv420p -crf 18 -f {} {}",
       shell_quote(ffmpeg), fps, muxer_for(path), shell_quote(impl_->file.temp_path()));
   // A pipe closed by a failing ffmpeg must be an error, not a signal that kills us.
   std::signal(SIGPIPE, SIG_IGN);

@@ -1,0 +1,205 @@
+// bw-render end to end: images named by frame number, ranges, determinism, video,
+// and every bad input with its exit code and one-line message.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "io/frame_file.h"
+#include "io/particles_file.h"
+#include "render/image.h"
+#include "render/video.h"
+#include "synthetic.h"
+#include "test_support.h"
+
+namespace br = bw::render;
+using bw::test::run;
+using bw::Vec3d;
+
+namespace {
+
+const std::string kTool = bw::test::tool("bw-render");
+const std::string kSmall = " --width 160 --height 120";
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// OUT/run.h5 (a wall), OUT/frames/00000N.h5 for N in `frames`: a ball falling.
+void write_run(const bw::test::TempDir& dir, std::initializer_list<int> frames) {
+  br::test::write_wall_run(dir.path());
+  std::filesystem::create_directories(dir.file("frames"));
+  for (int n : frames) {
+    bw::FrameData f;
+    f.frame = n;
+    f.time = n / 30.0;
+    br::test::add_ball(f, Vec3d(0, 0, 0.8 - 0.05 * n), 0.2, 0.04, 0.1, 7);
+    bw::write_frame(f, bw::frame_file_name(dir.file("frames"), n));
+  }
+}
+
+// Nothing was written under `folder` (which may not exist at all).
+bool nothing_in(const std::string& folder) {
+  return !bw::test::exists(folder) || bw::test::list_folder(folder).empty();
+}
+
+void expect_one_line_error(const bw::test::CommandResult& r, int code, const std::string& fragment) {
+  EXPECT_EQ(r.exit_code, code) << r.err;
+  EXPECT_EQ(bw::test::line_count(r.err), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("bw-render: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
+}
+
+}  // namespace
+
+TEST(BwRender, OnePngPerFrameNamedByNumber) {
+  bw::test::TempDir dir;
+  write_run(dir, {0, 1, 2, 3, 4});
+  const auto r = run(kTool + " " + dir.file("frames") + " -o " + dir.file("images") + " --frames 1:4:2" + kSmall);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(bw::test::list_folder(dir.file("images")), "000001.png 000003.png");
+  const br::Image image = br::read_png(dir.file("images/000003.png"));
+  EXPECT_EQ(image.width, 160);
+  EXPECT_EQ(image.height, 120);
+  // Quiet output when stderr is not a terminal: the summary line, with ms per frame.
+  EXPECT_EQ(bw::test::line_count(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("ms per frame"), std::string::npos) << r.err;
+  EXPECT_TRUE(run(kTool + " " + dir.file("frames") + " -o " + dir.file("q") + " -q --frames 0" + kSmall).err.empty());
+}
+
+TEST(BwRender, SameFrameTwiceGivesTheSameBytes) {
+  bw::test::TempDir dir;
+  write_run(dir, {0, 1});
+  for (const char* out : {"a", "b"})
+    ASSERT_EQ(run(kTool + " " + dir.file("frames") + " -o " + dir.file(out) + " --frames 1" + kSmall).exit_code, 0);
+  const std::string a = slurp(dir.file("a/000001.png")), b = slurp(dir.file("b/000001.png"));
+  EXPECT_GT(a.size(), 1000u);
+  EXPECT_EQ(a, b);
+}
+
+// Different ranges rendered apart agree with one run over all of them: the particle
+// size, ground and fitted camera come from the folder's first frame.
+TEST(BwRender, RangesRenderedApartMatchOneRun) {
+  bw::test::TempDir dir;
+  write_run(dir, {0, 1, 2});
+  ASSERT_EQ(run(kTool + " " + dir.file("frames") + " -o " + dir.file("all") + kSmall).exit_code, 0);
+  ASSERT_EQ(run(kTool + " " + dir.file("frames") + " -o " + dir.file("part") + " --frames 2:" + kSmall).exit_code, 0);
+  EXPECT_EQ(slurp(dir.file("all/000002.png")), slurp(dir.file("part/000002.png")));
+}
+
+TEST(BwRender, SceneTablesAndCommandLine) {
+  bw::test::TempDir dir;
+  write_run(dir, {0});
+  std::ofstream(dir.file("scene.toml")) << "[fluid]\nrho0 = 998\n[render]\nwidth = 96\nheight = 64\n"
+                                           "[camera]\nposition = [0, -3, 1]\ntarget = [0, 0, 0.5]\n";
+  auto r = run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --scene " + dir.file("scene.toml") + " -v");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(br::read_png(dir.file("i/000000.png")).width, 96);
+  EXPECT_NE(r.err.find("camera       0,-3,1:0,0,0.5:45\n"), std::string::npos) << r.err;
+  r = run(kTool + " " + dir.file("frames") + " -o " + dir.file("j") + " --scene " + dir.file("scene.toml") +
+          " --width 50 --camera 1,-3,1:0,0,0.5:30 -v");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(br::read_png(dir.file("j/000000.png")).width, 50);
+  EXPECT_NE(r.err.find("camera       1,-3,1:0,0,0.5:30\n"), std::string::npos) << r.err;
+}
+
+TEST(BwRender, Video) {
+  if (br::find_on_path("ffmpeg").empty()) GTEST_SKIP() << "ffmpeg is not installed";
+  bw::test::TempDir dir;
+  write_run(dir, {0, 1, 2});
+  const auto r = run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --video " + dir.file("ball.mp4") +
+                     kSmall);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(slurp(dir.file("ball.mp4")).size(), 500u);
+  EXPECT_NE(r.err.find("at 30 fps"), std::string::npos) << r.err;
+  EXPECT_EQ(bw::test::list_folder(dir.path()).find(".tmp"), std::string::npos);
+}
+
+TEST(BwRender, VideoWithoutFfmpegFails) {
+  bw::test::TempDir dir;
+  write_run(dir, {0});
+  const auto r = run("PATH=/nonexistent " + kTool + " " + dir.file("frames") + " -o " + dir.file("i") +
+                     " --video " + dir.file("v.mp4") + kSmall);
+  expect_one_line_error(r, 1, "ffmpeg, which is not installed");
+  EXPECT_FALSE(bw::test::exists(dir.file("i/000000.png")));
+}
+
+TEST(BwRender, MissingFrame) {
+  bw::test::TempDir dir;
+  write_run(dir, {0, 1, 3});
+  const auto r = run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --frames 0:3" + kSmall);
+  expect_one_line_error(r, 2, "frame 2 is missing: " + dir.file("frames") + "/000002.h5");
+  EXPECT_TRUE(nothing_in(dir.file("i")));
+  expect_one_line_error(run(kTool + " " + dir.file("nowhere") + " -o " + dir.file("i")), 2, "no such folder");
+  std::filesystem::create_directories(dir.file("empty"));
+  expect_one_line_error(run(kTool + " " + dir.file("empty") + " -o " + dir.file("i")), 2, "holds no frame files");
+}
+
+TEST(BwRender, FrameOfTheWrongKind) {
+  bw::test::TempDir dir;
+  write_run(dir, {0});
+  std::filesystem::copy_file(dir.file("wall.h5"), dir.file("frames/000001.h5"));
+  const auto r = run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + kSmall);
+  expect_one_line_error(r, 2, "000001.h5");
+  EXPECT_NE(r.err.find("particles"), std::string::npos) << r.err;
+  EXPECT_TRUE(nothing_in(dir.file("i")));
+  std::ofstream(dir.file("frames/000002.h5")) << "not HDF5";
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --frames 2"), 2,
+                        "000002.h5");
+}
+
+TEST(BwRender, EmptyRange) {
+  bw::test::TempDir dir;
+  write_run(dir, {0, 1});
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --frames 5:3"), 2,
+                        "empty");
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --frames 5:"), 2,
+                        "empty");
+}
+
+TEST(BwRender, UnwritableOutputFolder) {
+  bw::test::TempDir dir;
+  write_run(dir, {0});
+  std::ofstream(dir.file("file")) << "x";
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("file/images")), 2,
+                        dir.file("file/images"));
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("file")), 2, dir.file("file"));
+}
+
+TEST(BwRender, BadSceneAndOptions) {
+  bw::test::TempDir dir;
+  write_run(dir, {0});
+  std::ofstream(dir.file("scene.toml")) << "[render]\nwidht = 3\n";
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --scene " +
+                            dir.file("scene.toml")),
+                        2, "render.widht: unknown key");
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --filter gauss"), 2,
+                        "--filter");
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --camera 1,2"), 2,
+                        "--camera");
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --video out.gif"), 2,
+                        ".mp4, .mov or .mkv");
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --fragments " +
+                            dir.file("wall.h5")),
+                        2, "wall.h5");
+}
+
+// No EGL display, or no OpenGL 4.5: exit 1 with what was looked for. glvnd finds no
+// vendor library when pointed at none; Mesa offers no 4.5 context when told to
+// report an older version.
+TEST(BwRender, NoDisplayOrNoOpenGl45) {
+  bw::test::TempDir dir;
+  write_run(dir, {0});
+  const std::string args = " " + dir.file("frames") + " -o " + dir.file("i") + kSmall;
+  auto r = run("__EGL_VENDOR_LIBRARY_FILENAMES=" + dir.file("none.json") + " " + kTool + args);
+  expect_one_line_error(r, 1, "no EGL display with OpenGL 4.5 core");
+  EXPECT_NE(r.err.find("EGL_MESA_platform_surfaceless"), std::string::npos) << r.err;
+  r = run("MESA_GL_VERSION_OVERRIDE=3.3 " + kTool + args);
+  if (r.exit_code == 0) GTEST_SKIP() << "the EGL driver here is not Mesa";
+  expect_one_line_error(r, 1, "no EGL display with OpenGL 4.5 core");
+  EXPECT_FALSE(bw::test::exists(dir.file("i/000000.png")));
+}

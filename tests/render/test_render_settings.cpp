@@ -1,0 +1,268 @@
+// The renderer's host-side parts: scene tables, command-line values, camera fit,
+// particle spacing, and where solids and bodies are placed. No OpenGL needed.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common/error.h"
+#include "io/fragments_file.h"
+#include "io/frame_file.h"
+#include "io/particles_file.h"
+#include "io/run_file.h"
+#include "mesh/shapes.h"
+#include "render/camera.h"
+#include "render/particle_spacing.h"
+#include "render/render_settings.h"
+#include "render/sequence.h"
+#include "render/solids.h"
+#include "sample/sampler.h"
+#include "synthetic.h"
+#include "test_support.h"
+
+namespace br = bw::render;
+using bw::Vec3d;
+
+namespace {
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const bw::InputError& e) {
+    return e.what();
+  }
+  return "(no InputError)";
+}
+
+}  // namespace
+
+TEST(RenderSettings, ReadsItsTablesAndIgnoresTheOthers) {
+  const auto s = br::parse_render_settings(R"(
+[fluid]
+anything = "the simulator's business"
+[[solid]]
+mesh = "wall.obj"
+[camera]
+position = [1, -3, 2]
+target = [0, 0, 0.5]
+fov = 50
+[light]
+direction = [0, 0, -1]
+shadows = false
+[render]
+width = 320
+height = 200
+filter = "bilateral"
+absorption = [1, 0.5, 0.25]
+ground_height = -0.5
+)",
+                                           "scene.toml");
+  ASSERT_TRUE(s.camera);
+  EXPECT_EQ(s.camera->position, Vec3d(1, -3, 2));
+  EXPECT_EQ(s.camera->fov_degrees, 50);
+  EXPECT_FALSE(s.light.shadows);
+  EXPECT_EQ(s.width, 320);
+  EXPECT_EQ(s.height, 200);
+  EXPECT_EQ(s.filter, br::Filter::kBilateral);
+  EXPECT_EQ(s.absorption, Vec3d(1, 0.5, 0.25));
+  ASSERT_TRUE(s.ground_height);
+  EXPECT_EQ(*s.ground_height, -0.5);
+}
+
+TEST(RenderSettings, DefaultsWithoutTables) {
+  const auto s = br::parse_render_settings("[fluid]\nrho0 = 998\n", "scene.toml");
+  EXPECT_FALSE(s.camera);
+  EXPECT_EQ(s.width, 1280);
+  EXPECT_EQ(s.height, 720);
+  EXPECT_EQ(s.filter, br::Filter::kNarrowRange);
+}
+
+TEST(RenderSettings, RejectsUnknownKeysWithTheirPath) {
+  EXPECT_EQ(error_of([] { br::parse_render_settings("[render]\nwidht = 3\n", "s.toml"); }),
+            "s.toml: render.widht: unknown key (see docs/rendering.md)");
+  EXPECT_EQ(error_of([] { br::parse_render_settings("[camera]\nposition=[0,0,1]\ntarget=[0,1,1]\nzoom=2\n", "s.toml"); }),
+            "s.toml: camera.zoom: unknown key (see docs/rendering.md)");
+  EXPECT_EQ(error_of([] { br::parse_render_settings("[light]\ncolour = [1,1,1]\n", "s.toml"); }),
+            "s.toml: light.colour: unknown key (see docs/rendering.md)");
+}
+
+TEST(RenderSettings, RejectsBadValues) {
+  EXPECT_EQ(error_of([] { br::parse_render_settings("[render]\nwidth = 0\n", "s.toml"); }),
+            "s.toml: render.width: 0 is outside [1, 16384]");
+  EXPECT_EQ(error_of([] { br::parse_render_settings("[render]\nwidth = \"wide\"\n", "s.toml"); }),
+            "s.toml: render.width: expected an integer");
+  EXPECT_EQ(error_of([] { br::parse_render_settings("[render]\nfilter = \"gauss\"\n", "s.toml"); }),
+            "s.toml: render.filter: 'gauss' is not one of narrow-range, bilateral, none");
+  EXPECT_EQ(error_of([] { br::parse_render_settings("[render]\nfluid_color = [1, 2]\n", "s.toml"); }),
+            "s.toml: render.fluid_color: expected an array of 3 numbers");
+  EXPECT_EQ(error_of([] { br::parse_render_settings("[camera]\nposition = [0, 0, 1]\n", "s.toml"); }),
+            "s.toml: camera.target: required when a [camera] table is given");
+  EXPECT_EQ(error_of([] { br::parse_render_settings("[camera]\nposition=[0,0,1]\ntarget=[0,0,0]\n", "s.toml"); }),
+            "s.toml: camera.up: is parallel to the viewing direction");
+  EXPECT_NE(error_of([] { br::parse_render_settings("[render\nwidth = 3\n", "s.toml"); }).find("s.toml:1:"),
+            std::string::npos);
+}
+
+TEST(RenderSettings, FrameRanges) {
+  auto r = br::parse_frame_range("3:9:2");
+  EXPECT_EQ(*r.first, 3);
+  EXPECT_EQ(*r.last, 9);
+  EXPECT_EQ(r.step, 2);
+  r = br::parse_frame_range("5");
+  EXPECT_EQ(*r.first, 5);
+  EXPECT_EQ(*r.last, 5);
+  r = br::parse_frame_range("4:");
+  EXPECT_EQ(*r.first, 4);
+  EXPECT_FALSE(r.last);
+  r = br::parse_frame_range("::3");
+  EXPECT_FALSE(r.first);
+  EXPECT_EQ(r.step, 3);
+  EXPECT_THROW(br::parse_frame_range("9:3"), bw::InputError);
+  EXPECT_THROW(br::parse_frame_range("1:2:0"), bw::InputError);
+  EXPECT_THROW(br::parse_frame_range("a:b"), bw::InputError);
+  EXPECT_THROW(br::parse_frame_range("-1:4"), bw::InputError);
+  EXPECT_THROW(br::parse_frame_range("1:2:3:4"), bw::InputError);
+}
+
+TEST(RenderSettings, CameraOption) {
+  const br::Camera c = br::parse_camera("1,2,3:0,0,0.5:30");
+  EXPECT_EQ(c.position, Vec3d(1, 2, 3));
+  EXPECT_EQ(c.target, Vec3d(0, 0, 0.5));
+  EXPECT_EQ(c.fov_degrees, 30);
+  EXPECT_EQ(br::parse_camera("1,2,3:0,0,0").fov_degrees, 45);
+  EXPECT_THROW(br::parse_camera("1,2:0,0,0"), bw::InputError);
+  EXPECT_THROW(br::parse_camera("1,2,3:0,0,x"), bw::InputError);
+  EXPECT_THROW(br::parse_camera("1,2,3:0,0,0:200"), bw::InputError);
+  EXPECT_THROW(br::parse_camera("0,0,5:0,0,0"), bw::InputError);  // looking along up
+}
+
+TEST(Camera, FittedViewHoldsEveryCorner) {
+  bw::Aabb box;
+  box.add(Vec3d(-1, -0.5, 0));
+  box.add(Vec3d(3, 1.5, 0.7));
+  for (double aspect : {16.0 / 9.0, 1.0, 0.5}) {
+    const br::Camera c = br::fit_camera(box, 40, aspect);
+    const br::Mat4d m = br::perspective(c.fov_degrees, aspect, 0.01, 100) * br::look_at(c.position, c.target, c.up);
+    for (int i = 0; i < 8; ++i) {
+      const Vec3d corner((i & 1) ? box.max.x() : box.min.x(), (i & 2) ? box.max.y() : box.min.y(),
+                         (i & 4) ? box.max.z() : box.min.z());
+      const Eigen::Vector4d clip = m * Eigen::Vector4d(corner.x(), corner.y(), corner.z(), 1);
+      EXPECT_LE(std::abs(clip.x() / clip.w()), 1.0) << "aspect " << aspect << " corner " << i;
+      EXPECT_LE(std::abs(clip.y() / clip.w()), 1.0) << "aspect " << aspect << " corner " << i;
+      EXPECT_GT(clip.w(), 0);
+    }
+  }
+}
+
+TEST(ParticleSpacing, MedianNearestNeighbourOfALattice) {
+  for (double spacing : {0.01, 0.05}) {
+    bw::FrameData f;
+    br::test::add_block(f, Vec3d(0, 0, 0), Vec3d(0.5, 0.3, 0.2), spacing, 0.0, 1);
+    const double s = br::estimate_particle_spacing(f.x.data(), f.y.data(), f.z.data(), f.fluid_count());
+    bw::test::figure("estimated spacing / true spacing", s / spacing);
+    EXPECT_NEAR(s, spacing, 1e-3 * spacing);
+    // A few far-flung drops do not change the median.
+    f.x.push_back(30), f.y.push_back(30), f.z.push_back(30);
+    EXPECT_NEAR(br::estimate_particle_spacing(f.x.data(), f.y.data(), f.z.data(), f.fluid_count()), spacing,
+                1e-3 * spacing);
+  }
+  const float one = 1;
+  EXPECT_EQ(br::estimate_particle_spacing(&one, &one, &one, 1), 0);
+}
+
+// A dynamic solid's mesh is placed by x_world = R(q) (x_ref - c_ref) + position, where
+// x_ref = translation + R(rotation) (scale x_mesh); static solids stay put.
+TEST(Solids, PlacedByScaleRotationTranslationAndBodyPose) {
+  bw::test::TempDir dir;
+  const bw::SampledSolid cube =
+      bw::sample::sample_mesh(bw::mesh::box(Vec3d(0, 0, 0), Vec3d(1, 1, 1)), {0.25, false, "cube", 1.0});
+  bw::write_particles(cube, dir.file("cube.h5"), "test");
+  bw::RunRecord run;
+  bw::SolidRecord fixed;
+  fixed.name = "fixed";
+  fixed.particles = dir.file("cube.h5");
+  fixed.kind = "static";
+  fixed.scale = 2;
+  fixed.translation = Vec3d(10, 0, 0);
+  run.solids.push_back(fixed);
+  bw::SolidRecord moving = fixed;
+  moving.name = "moving";
+  moving.kind = "dynamic";
+  moving.scale = 1;
+  moving.translation = Vec3d(0, 0, 0);
+  // A quarter turn about z: the unit cube [0,1]^3 goes to [-1,0] x [0,1] x [0,1].
+  moving.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Vec3d::UnitZ()));
+  moving.body = 0;
+  run.solids.push_back(moving);
+  bw::BodyRecord body;
+  body.solid = 1;
+  body.reference_center = Vec3d(-0.5, 0.5, 0.5);
+  run.bodies.push_back(body);
+  bw::write_run(run, dir.file("run.h5"));
+
+  const auto scene = br::SolidScene::load({dir.file("run.h5"), ""}, {});
+  EXPECT_EQ(scene.solid_count(), 2u);
+
+  // No poses (time 0): the reference configuration.
+  bw::Aabb at_rest = scene.place({}).bounds();
+  EXPECT_TRUE(at_rest.min.isApprox(Vec3d(-1, 0, 0), 1e-9));
+  EXPECT_TRUE(at_rest.max.isApprox(Vec3d(12, 2, 2), 1e-9));
+
+  // The body's centre moves to (0, 0, 5) and turns half a turn about x.
+  bw::BodyStates states;
+  states.id = {0};
+  states.position = {Vec3d(0, 0, 5)};
+  states.orientation = {Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, Vec3d::UnitX()))};
+  states.linear_velocity = states.angular_velocity = {Vec3d::Zero()};
+  std::size_t missing = 99;
+  const br::TriangleSoup soup = scene.place(states, &missing);
+  EXPECT_EQ(missing, 0u);
+  bw::Aabb moved;
+  for (std::size_t v = 0; v < soup.vertices.size(); v += 9)
+    if (soup.vertices[v] < 5) moved.add(Vec3d(soup.vertices[v], soup.vertices[v + 1], soup.vertices[v + 2]));
+  EXPECT_TRUE(moved.min.isApprox(Vec3d(-0.5, -0.5, 4.5), 1e-6)) << moved.min.transpose();
+  EXPECT_TRUE(moved.max.isApprox(Vec3d(0.5, 0.5, 5.5), 1e-6)) << moved.max.transpose();
+  // Normals are unit and the colour is the body colour's shade, within [0, 1].
+  for (std::size_t v = 0; v < soup.vertices.size(); v += 9) {
+    EXPECT_NEAR(Vec3d(soup.vertices[v + 3], soup.vertices[v + 4], soup.vertices[v + 5]).norm(), 1.0, 1e-5);
+    for (int k = 6; k < 9; ++k) EXPECT_LE(soup.vertices[v + k], 1.0f);
+  }
+}
+
+TEST(Solids, FragmentsReplaceTheirBodysMeshAndUnknownBodiesAreCounted) {
+  bw::test::TempDir dir;
+  br::test::write_wall_run(dir.path());
+  // A run with the wall as a breakable solid of body 0, and a fragments file with
+  // two fragments of body 1 (a child body).
+  bw::RunRecord run = bw::read_run(dir.file("run.h5"));
+  run.solids[0].kind = "breakable";
+  run.solids[0].body = 0;
+  bw::BodyRecord root, child;
+  root.reference_center = Vec3d(0, 0.575, 0.5);
+  child.parent = 0;
+  child.reference_center = Vec3d(0.5, 0.575, 0.5);
+  run.bodies = {root, child};
+  bw::write_run(run, dir.file("run.h5"));
+  bw::FragmentSet set;
+  for (int k = 0; k < 2; ++k) {
+    bw::Fragment f;
+    f.mesh = bw::mesh::box(Vec3d(k * 0.5, 0.5, 0), Vec3d(k * 0.5 + 0.5, 0.65, 1));
+    f.body = 1;
+    f.seed = k;
+    set.fragments.push_back(f);
+  }
+  bw::write_fragments(set, dir.file("fragments.h5"));
+  const auto scene = br::SolidScene::load({dir.file("run.h5"), dir.file("fragments.h5")}, {});
+  EXPECT_EQ(scene.fragment_count(), 2u);
+
+  bw::BodyStates states;
+  states.id = {1, 7};
+  states.position = {Vec3d(0.5, 0.575, 3.5), Vec3d::Zero()};
+  states.orientation = {Eigen::Quaterniond::Identity(), Eigen::Quaterniond::Identity()};
+  states.linear_velocity = states.angular_velocity = {Vec3d::Zero(), Vec3d::Zero()};
+  std::size_t missing = 0;
+  const bw::Aabb box = scene.place(states, &missing).bounds();
+  EXPECT_EQ(missing, 1u);  // body 7 is not in the run
+  // Only body 1's fragments, lifted by 3 m; the wall's own body is not in the frame.
+  EXPECT_TRUE(box.min.isApprox(Vec3d(0, 0.5, 3), 1e-6)) << box.min.transpose();
+  EXPECT_TRUE(box.max.isApprox(Vec3d(1, 0.65, 4), 1e-6)) << box.max.transpose();
+}

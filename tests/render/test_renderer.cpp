@@ -1,0 +1,228 @@
+// The renderer on whatever EGL device the machine has (llvmpipe in CI): fluid shows
+// where it projects and nowhere else, smoothing flattens a flat pool's normals,
+// solids show where their meshes project. Small images keep it quick.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include "io/frame_file.h"
+#include "mesh/shapes.h"
+#include "render/camera.h"
+#include "render/gl_context.h"
+#include "render/renderer.h"
+#include "render/solids.h"
+#include "synthetic.h"
+#include "test_support.h"
+
+namespace br = bw::render;
+using bw::Vec3d;
+
+namespace {
+
+constexpr int kWidth = 160, kHeight = 120;
+
+// One context for the whole suite: creating one costs more than a small render.
+br::GlContext& context() {
+  static std::unique_ptr<br::GlContext> c = br::GlContext::create();
+  return *c;
+}
+
+br::RenderSettings small_settings() {
+  br::RenderSettings s;
+  s.width = kWidth;
+  s.height = kHeight;
+  return s;
+}
+
+br::RenderInput input_of(const bw::FrameData& f, const br::Camera& camera, double spacing) {
+  br::RenderInput in;
+  in.x = f.x.data(), in.y = f.y.data(), in.z = f.z.data(), in.count = f.fluid_count();
+  in.camera = camera;
+  in.particle_radius = 0.8 * spacing;
+  in.particle_spacing = spacing;
+  in.ground_height = 0;
+  return in;
+}
+
+// Pixel (column, row from the top) where a world point projects.
+Eigen::Vector2d project(const br::Camera& c, const Vec3d& p) {
+  const br::Mat4d m = br::perspective(c.fov_degrees, double(kWidth) / kHeight, 0.01, 100) *
+                      br::look_at(c.position, c.target, c.up);
+  const Eigen::Vector4d clip = m * Eigen::Vector4d(p.x(), p.y(), p.z(), 1);
+  return {(clip.x() / clip.w() * 0.5 + 0.5) * kWidth, (0.5 - clip.y() / clip.w() * 0.5) * kHeight};
+}
+
+bool same_pixel(const br::Image& a, const br::Image& b, int x, int y) {
+  return std::equal(a.pixel(x, y), a.pixel(x, y) + 3, b.pixel(x, y));
+}
+
+}  // namespace
+
+TEST(Renderer, ReportsItsDevice) {
+  EXPECT_FALSE(context().renderer().empty());
+  EXPECT_NE(context().display().find("EGL"), std::string::npos);
+  std::printf("[ device   ] %s via %s\n", context().renderer().c_str(), context().display().c_str());
+}
+
+// A ball of particles: fluid where the ball projects, the very same pixels as an
+// empty frame elsewhere (shadows off, so that the ball changes nothing outside).
+TEST(Renderer, BallShowsWhereItProjectsAndNowhereElse) {
+  br::RenderSettings s = small_settings();
+  s.light.shadows = false;
+  br::Renderer renderer(context(), s);
+  const Vec3d center(0.2, 0.1, 0.6);
+  const double radius = 0.3, spacing = 0.03;
+  bw::FrameData ball;
+  br::test::add_ball(ball, center, radius, spacing, 0.1, 3);
+  br::Camera camera;
+  camera.position = Vec3d(0.5, -2.5, 1.2);
+  camera.target = center;
+
+  const br::Image empty = renderer.render(input_of(bw::FrameData{}, camera, spacing));
+  const br::Image image = renderer.render(input_of(ball, camera, spacing));
+  const br::FluidLayers layers = renderer.read_fluid_layers();
+
+  // Projected disc: the centre's pixel and the radius at the centre's distance (the
+  // particles reach a particle radius beyond the lattice).
+  const Eigen::Vector2d c = project(camera, center);
+  const double focal = 0.5 * kHeight / std::tan(camera.fov_degrees * M_PI / 360);
+  const double r_px = (radius + 0.8 * spacing) * focal / (center - camera.position).norm();
+  int inside = 0, inside_fluid = 0, inside_changed = 0, outside_changed = 0, stray_fluid = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const double d = (Eigen::Vector2d(x + 0.5, y + 0.5) - c).norm();
+      const bool fluid = layers.depth[y * kWidth + x] > 0;
+      if (d < 0.85 * r_px) {
+        ++inside;
+        inside_fluid += fluid;
+        inside_changed += !same_pixel(image, empty, x, y);
+      } else if (d > 1.15 * r_px + 2) {
+        outside_changed += !same_pixel(image, empty, x, y);
+        stray_fluid += fluid;
+      }
+    }
+  bw::test::figure("ball disc pixels", inside);
+  bw::test::figure("ball disc pixels showing water", inside_changed);
+  ASSERT_GT(inside, 300);
+  EXPECT_EQ(inside_fluid, inside);
+  EXPECT_GE(inside_changed, 0.98 * inside);
+  EXPECT_EQ(outside_changed, 0);
+  EXPECT_EQ(stray_fluid, 0);
+  // Thickness through the middle is close to the diameter (the thickness is scaled
+  // to the particles' volume).
+  const int cx = static_cast<int>(c.x()), cy = static_cast<int>(c.y());
+  const double middle = layers.thickness[cy * kWidth + cx];
+  bw::test::figure("thickness through the middle / diameter", middle / (2 * radius));
+  EXPECT_NEAR(middle, 2 * radius, 0.25 * 2 * radius);
+}
+
+// A flat, jittered pool seen obliquely: the spread of its normals around the true
+// one, for each filter. Smoothing must lower it, the narrow-range filter most.
+TEST(Renderer, SmoothingLowersTheNormalNoiseOfAFlatPool) {
+  const double spacing = 0.02;
+  bw::FrameData pool;
+  br::test::add_block(pool, Vec3d(-1, -1, 0), Vec3d(1, 1, 0.1), spacing, 0.15, 5);
+  br::Camera camera;
+  camera.position = Vec3d(0, -1.2, 1.0);
+  camera.target = Vec3d(0, 0, 0.1);
+  const Vec3d up_view = (br::look_at(camera.position, camera.target, camera.up).topLeftCorner<3, 3>() *
+                         Vec3d::UnitZ()).normalized();
+  double noise[3] = {};
+  const br::Filter filters[3] = {br::Filter::kNone, br::Filter::kBilateral, br::Filter::kNarrowRange};
+  for (int f = 0; f < 3; ++f) {
+    br::RenderSettings s = small_settings();
+    s.filter = filters[f];
+    br::Renderer renderer(context(), s);
+    renderer.render(input_of(pool, camera, spacing));
+    const br::FluidLayers layers = renderer.read_fluid_layers();
+    // Pixels of the top face far from its edges: rows in the middle third.
+    double sum = 0;
+    int count = 0;
+    for (int y = kHeight / 3; y < 2 * kHeight / 3; ++y)
+      for (int x = kWidth / 4; x < 3 * kWidth / 4; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * kWidth + x;
+        if (layers.depth[i] <= 0) continue;
+        const Vec3d n(layers.normals[3 * i], layers.normals[3 * i + 1], layers.normals[3 * i + 2]);
+        const double angle = std::acos(std::clamp(n.normalized().dot(up_view), -1.0, 1.0));
+        sum += angle * angle;
+        ++count;
+      }
+    ASSERT_GT(count, kWidth * kHeight / 8);
+    noise[f] = std::sqrt(sum / count) * 180 / M_PI;
+    bw::test::figure(std::string("normal noise (RMS angle), filter ") + br::filter_name(filters[f]), noise[f],
+                     "degrees");
+  }
+  EXPECT_LT(noise[1], 0.7 * noise[0]);
+  EXPECT_LT(noise[2], 0.5 * noise[0]);
+  EXPECT_LT(noise[2], 5.0);
+}
+
+// Solids show where their meshes project: a static wall, and a dynamic box that its
+// body's pose moves away from where it started.
+TEST(Renderer, SolidsShowWhereTheirMeshesProject) {
+  bw::test::TempDir dir;
+  const bw::Aabb wall = br::test::write_wall_run(dir.path());
+  const auto scene = br::SolidScene::load({dir.file("run.h5"), ""}, {});
+  br::Renderer renderer(context(), small_settings());
+  br::Camera camera;
+  camera.position = Vec3d(0, -3.5, 1.2);
+  camera.target = Vec3d(0, 0.5, 0.4);
+
+  const br::TriangleSoup soup = scene.place({});
+  br::RenderInput in = input_of(bw::FrameData{}, camera, 0.02);
+  const br::Image empty = renderer.render(in);
+  in.solids = &soup;
+  const br::Image image = renderer.render(in);
+
+  // Every pixel well inside the wall's front face changed; pixels well away from it
+  // (above the wall, where only sky can be) did not.
+  const Eigen::Vector2d a = project(camera, Vec3d(wall.min.x(), wall.min.y(), wall.max.z()));
+  const Eigen::Vector2d b = project(camera, Vec3d(wall.max.x(), wall.min.y(), wall.min.z()));
+  int face = 0, face_changed = 0;
+  for (int y = int(a.y()) + 3; y < int(b.y()) - 3; ++y)
+    for (int x = int(a.x()) + 3; x < int(b.x()) - 3; ++x) ++face, face_changed += !same_pixel(image, empty, x, y);
+  bw::test::figure("wall face pixels", face);
+  ASSERT_GT(face, 500);
+  EXPECT_EQ(face_changed, face);
+  int sky = 0, sky_changed = 0;
+  for (int y = 0; y < int(a.y()) - 12; ++y)
+    for (int x = 0; x < kWidth; ++x) ++sky, sky_changed += !same_pixel(image, empty, x, y);
+  ASSERT_GT(sky, 100);
+  EXPECT_EQ(sky_changed, 0);
+
+  // A cube in the reference configuration at the origin, moved by its body to x = 1.
+  const bw::TriMesh mesh = bw::mesh::box(Vec3d(-0.2, -1.2, 0.0), Vec3d(0.2, -0.8, 0.4));
+  const auto place = [&](const Vec3d& shift) {
+    br::TriangleSoup s;
+    for (const bw::Triangle& t : mesh.triangles) {
+      const Vec3d p0 = mesh.vertices[t[0]] + shift, p1 = mesh.vertices[t[1]] + shift,
+                  p2 = mesh.vertices[t[2]] + shift;
+      const Vec3d n = (p1 - p0).cross(p2 - p0).normalized();
+      for (const Vec3d* p : {&p0, &p1, &p2})
+        for (double v : {p->x(), p->y(), p->z(), n.x(), n.y(), n.z(), 0.5, 0.3, 0.2})
+          s.vertices.push_back(static_cast<float>(v));
+    }
+    return s;
+  };
+  const br::TriangleSoup moved = place(Vec3d(1, 0, 0));
+  in.solids = &moved;
+  const br::Image image_moved = renderer.render(in);
+  const Eigen::Vector2d at_new = project(camera, Vec3d(1, -1.2, 0.2));
+  const Eigen::Vector2d at_old = project(camera, Vec3d(0, -1.2, 0.2));
+  EXPECT_FALSE(same_pixel(image_moved, empty, int(at_new.x()), int(at_new.y())));
+  EXPECT_TRUE(same_pixel(image_moved, empty, int(at_old.x()), int(at_old.y())));
+}
+
+// The same input gives the same bytes, also after rendering something else.
+TEST(Renderer, Deterministic) {
+  br::Renderer renderer(context(), small_settings());
+  const bw::FrameData f = br::test::splash_frame(20000);
+  br::Camera camera;
+  camera.position = Vec3d(-1.7, -3.1, 1.9);
+  camera.target = Vec3d(0, -0.1, 0.45);
+  const br::Image first = renderer.render(input_of(f, camera, 0.03));
+  renderer.render(input_of(br::test::splash_frame(5000), camera, 0.05));
+  const br::Image second = renderer.render(input_of(f, camera, 0.03));
+  EXPECT_EQ(first.rgb, second.rgb);
+}
