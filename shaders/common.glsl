@@ -18,7 +18,8 @@ layout(std140, binding = 0) uniform Frame {
   vec4 u_absorption;       // rgb (1/m), specular strength
   vec4 u_camera_position;  // world xyz, view mode (0 shaded, 1 depth, 2 thickness, 3 normals)
   vec4 u_filter;           // world radius (m), max radius (pixels), range threshold (m), clamp (m)
-  vec4 u_misc;             // guard band (pixels), largest point size, water shadow point size, unused
+  vec4 u_misc;             // guard band (pixels), largest point size, water shadow point size, its radius (m)
+  vec4 u_shadow;           // water front bias (light depth units), unused x 3
 };
 
 // Eye distance stored where a pixel shows no fluid (cleared to it; depth is blended

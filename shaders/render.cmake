@@ -17,6 +17,7 @@ bw_embed_files(TARGET bw_render_shaders NAMESPACE bw::render::shaders FILES
   ${CMAKE_CURRENT_LIST_DIR}/filter_narrow_range.frag
   ${CMAKE_CURRENT_LIST_DIR}/filter_bilateral.frag
   ${CMAKE_CURRENT_LIST_DIR}/blur_thickness.frag
+  ${CMAKE_CURRENT_LIST_DIR}/blur_shadow.frag
   ${CMAKE_CURRENT_LIST_DIR}/normals.frag
   ${CMAKE_CURRENT_LIST_DIR}/tone.glsl
   ${CMAKE_CURRENT_LIST_DIR}/composite_scene.frag

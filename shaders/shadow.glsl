@@ -18,7 +18,9 @@ vec3 sunlight(vec3 world, vec3 normal) {
                       texture(t_shadow_depth, vec3(s.xy + vec2(-0.5, 0.5) * texel, s.z)) +
                       texture(t_shadow_depth, vec3(s.xy + vec2(0.5, 0.5) * texel, s.z)));
   vec3 water = vec3(1.0);
-  float front = texture(t_shadow_front, s.xy).r;
+  // Only water in front of the point shades it; the front is as bumpy as the
+  // spheres drawn into it, so a water surface does not shade itself.
+  float front = texture(t_shadow_front, s.xy).r + u_shadow.x;
   if (s.z > front) water = exp(-u_absorption.rgb * texture(t_shadow_thickness, s.xy).r);
   return lit * water;
 }

@@ -10,8 +10,9 @@ void main() {
   vec2 offset = gl_PointCoord * 2.0 - 1.0;
   float q = dot(offset, offset);
   if (q > 1.0) discard;
-  float half_chord = u_camera.w * sqrt(1.0 - q);
+  float radius = u_misc.w;
+  float half_chord = radius * sqrt(1.0 - q);
   o_thickness = 2.0 * half_chord * u_ground.w;
-  vec4 clip = u_light_proj * vec4(v_center.xy + offset * u_camera.w, v_center.z + half_chord, 1.0);
+  vec4 clip = u_light_proj * vec4(v_center.xy + offset * radius, v_center.z + half_chord, 1.0);
   o_front = clip.z / clip.w * 0.5 + 0.5;
 }

@@ -31,6 +31,11 @@ constexpr double kFogDistances = 6.0;
 // plus kClampRatio radii (the paper's threshold and clamp ratios).
 constexpr double kRangeRatio = 5.0;
 constexpr double kClampRatio = 1.0;
+// The water's shadow is soft and its map coarse: beyond this many particles, only
+// every k-th one is drawn into it (k up to kMaxShadowStride), its radius grown by
+// cbrt(k) so that it carries the volume of the k - 1 left out.
+constexpr std::size_t kShadowParticles = 20000;
+constexpr std::size_t kMaxShadowStride = 8;
 // Bilateral filter: width of the Gaussian on depth differences, in particle radii.
 constexpr double kBilateralRangeRatio = 1.0;
 
@@ -48,8 +53,9 @@ struct FrameUniforms {
   float view[16], proj[16], inv_view[16], light_view[16], light_proj[16];
   float viewport[4], camera[4], light_dir[4], light_color[4], sky_color[4], horizon_color[4];
   float ground_color[4], ground[4], fluid_color[4], absorption[4], camera_position[4], filter[4], misc[4];
+  float shadow[4];
 };
-static_assert(sizeof(FrameUniforms) == (5 * 16 + 13 * 4) * sizeof(float), "std140 layout");
+static_assert(sizeof(FrameUniforms) == (5 * 16 + 14 * 4) * sizeof(float), "std140 layout");
 
 void put(float* out, const Mat4d& m) {
   for (int c = 0; c < 4; ++c)
@@ -228,13 +234,13 @@ struct Renderer::Impl {
   float max_point_size = 64;
 
   Program sky, mesh, mesh_shadow, sprite_fluid, sprite_shadow, filter_narrow, filter_bilateral, blur_thickness,
-      normals, composite_scene, composite;
+      blur_shadow, normals, composite_scene, composite;
 
   Texture scene_color, scene_depth, fluid_depth, fluid_mask, thickness, thickness_blur, filtered[2], normal_map,
       final_color;
-  Texture shadow_depth, shadow_thickness, shadow_front;
+  Texture shadow_depth, shadow_thickness, shadow_front, shadow_blur;
   Framebuffer scene_fb, fluid_fb, filter_fb[2], thickness_fb[2], normals_fb, final_fb, shadow_depth_fb,
-      shadow_fluid_fb;
+      shadow_fluid_fb, shadow_blur_fb[2];
   GLuint smoothed = 0;  // the texture holding the smoothed depth after the last render
 
   Buffer uniforms, particles, solid_vertices, ground_vertices;
@@ -275,6 +281,7 @@ void Renderer::Impl::build() {
   filter_narrow = Program("fullscreen.vert", "filter_narrow_range.frag");
   filter_bilateral = Program("fullscreen.vert", "filter_bilateral.frag");
   blur_thickness = Program("fullscreen.vert", "blur_thickness.frag");
+  blur_shadow = Program("fullscreen.vert", "blur_shadow.frag");
   normals = Program("fullscreen.vert", "normals.frag");
   composite_scene = Program("fullscreen.vert", "composite_scene.frag");
   composite = Program("fullscreen.vert", "composite.frag");
@@ -296,6 +303,7 @@ void Renderer::Impl::build() {
   gl::TextureParameteri(shadow_depth.id, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
   shadow_thickness = Texture(GL_R32F, kFluidShadowSize, kFluidShadowSize, true);
   shadow_front = Texture(GL_R32F, kFluidShadowSize, kFluidShadowSize, false);
+  shadow_blur = Texture(GL_R32F, kFluidShadowSize, kFluidShadowSize, false);
 
   scene_fb = Framebuffer({scene_color.id}, scene_depth.id, "scene");
   // Every pass after the particles' writes fluid pixels only: the fluid mask is the
@@ -309,6 +317,8 @@ void Renderer::Impl::build() {
   final_fb = Framebuffer({final_color.id}, fluid_mask.id, "final");
   shadow_depth_fb = Framebuffer({}, shadow_depth.id, "shadow");
   shadow_fluid_fb = Framebuffer({shadow_thickness.id, shadow_front.id}, 0, "water shadow");
+  shadow_blur_fb[0] = Framebuffer({shadow_blur.id}, 0, "water shadow blur");
+  shadow_blur_fb[1] = Framebuffer({shadow_thickness.id}, 0, "water shadow blur");
 
   gl::CreateVertexArrays(1, &vao_empty);
   gl::CreateVertexArrays(1, &vao_mesh);
@@ -477,7 +487,14 @@ Image Renderer::render(const RenderInput& in) {
   const bool bilateral = s.filter == Filter::kBilateral;
   put(u.filter, s.filter_radius * rad, s.filter_max_pixels,
       (bilateral ? kBilateralRangeRatio : kRangeRatio) * rad, kClampRatio * rad);
-  put(u.misc, kGuardPixels, r.max_point_size, std::min<double>(rad * kFluidShadowSize / half_side, r.max_point_size), 0);
+  const std::size_t shadow_stride =
+      std::clamp<std::size_t>((in.count + kShadowParticles - 1) / kShadowParticles, 1, kMaxShadowStride);
+  const double shadow_radius = rad * std::cbrt(static_cast<double>(shadow_stride));
+  put(u.misc, kGuardPixels, r.max_point_size,
+      std::min<double>(shadow_radius * kFluidShadowSize / half_side, r.max_point_size), shadow_radius);
+  // Two shadow-sphere diameters of light depth (the orthographic depth range is
+  // near .. far = 1e-3 sr .. 4 sr).
+  put(u.shadow, 4 * shadow_radius / (4 * sr - 1e-3 * sr), 0, 0, 0);
   r.uniforms.upload(&u, sizeof u);
   gl::BindBufferBase(GL_UNIFORM_BUFFER, 0, r.uniforms.id);
   gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, r.particles.id);
@@ -515,9 +532,21 @@ Image Renderer::render(const RenderInput& in) {
       gl::BlendEquationi(1, GL_MIN);
       gl::BlendFunci(1, GL_ONE, GL_ONE);
       r.sprite_shadow.use();
+      r.sprite_shadow.set("u_stride", static_cast<int>(shadow_stride));
       gl::BindVertexArray(r.vao_empty);
-      gl::DrawArrays(GL_POINTS, 0, sprite_vertices);
+      gl::DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(in.count / shadow_stride));
       gl::Disable(GL_BLEND);
+      // thickness -> blur -> thickness
+      const GLint dir = gl::GetUniformLocation(r.blur_shadow.id(), "u_direction");
+      r.blur_shadow.use();
+      gl::BindFramebuffer(GL_FRAMEBUFFER, r.shadow_blur_fb[0].id);
+      gl::ProgramUniform2i(r.blur_shadow.id(), dir, 1, 0);
+      gl::BindTextureUnit(0, r.shadow_thickness.id);
+      gl::DrawArrays(GL_TRIANGLES, 0, 3);
+      gl::BindFramebuffer(GL_FRAMEBUFFER, r.shadow_blur_fb[1].id);
+      gl::ProgramUniform2i(r.blur_shadow.id(), dir, 0, 1);
+      gl::BindTextureUnit(0, r.shadow_blur.id);
+      gl::DrawArrays(GL_TRIANGLES, 0, 3);
     }
   }
 
