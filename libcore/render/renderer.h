@@ -1,16 +1,20 @@
 // Screen-space fluid rendering (method.md section 7; van der Laan et al. 2009):
-//   0. shadow maps from the sun: solids' depth, and the water's thickness and front
-//      depth, so that water casts tinted, partial shadows;
-//   1. scene: sky, ground plane and solid meshes, lit and shadowed;
-//   2. fluid depth: every particle a sphere drawn as a camera-facing sprite, the
-//      sphere's front depth written (nearest wins);
-//   3. thickness: the same sprites, the sphere's chord along the view ray added up,
-//      cut where a solid stands in front;
-//   4. depth smoothing: the narrow-range filter (Truong and Yuksel 2018), a bilateral
-//      filter, or none; then view-space normals from depth differences;
-//   5. composite: Fresnel reflection of the sky, refraction through the thickness
-//      with Beer-Lambert absorption, a specular highlight, over the scene.
-// The result is read back with glReadPixels. The same input gives the same bytes.
+//   0. shadow maps from the sun: the solids' depth, and the water's thickness and
+//      nearest surface (a strided subset of the particles carrying the same volume,
+//      blurred), so that water casts tinted, partial shadows;
+//   1. scene: ground plane and solid meshes, lit and shadowed, then the sky;
+//   2. fluid depth and thickness in one pass of point sprites: per pixel the ray
+//      meets the particle's sphere; the nearest front wins (MIN blending) and the
+//      chords add up (ADD blending), cut where a solid stands; the pass also marks
+//      a fluid mask so that the passes below only run on fluid pixels;
+//   3. depth smoothing: the narrow-range filter (Truong and Yuksel 2018), a
+//      bilateral filter, or none; the thickness is blurred over a particle diameter;
+//      view-space normals from depth differences;
+//   4. composite: Fresnel reflection of the sky, refraction through the thickness
+//      with Beer-Lambert absorption, light scattered in the water, a specular glint,
+//      over the scene; tone shoulder and sRGB encoding.
+// Every layer has a guard band around the image; the image is read back with
+// glReadPixels. The same input gives the same bytes on the same driver.
 #pragma once
 
 #include <cstddef>

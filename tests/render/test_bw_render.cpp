@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "io/frame_file.h"
 #include "io/particles_file.h"
 #include "render/image.h"
@@ -194,8 +196,8 @@ TEST(BwRender, BadSceneAndOptions) {
 TEST(BwRender, NoDisplayOrNoOpenGl45) {
   bw::test::TempDir dir;
   write_run(dir, {0});
-  const std::string args = " " + dir.file("frames") + " -o " + dir.file("i") + kSmall;
-  auto r = run("__EGL_VENDOR_LIBRARY_FILENAMES=" + dir.file("none.json") + " " + kTool + args);
+  const std::string args = fmt::format(" {} -o {}{}", dir.file("frames"), dir.file("i"), kSmall);
+  auto r = run(fmt::format("__EGL_VENDOR_LIBRARY_FILENAMES={} {}{}", dir.file("none.json"), kTool, args));
   expect_one_line_error(r, 1, "no EGL display with OpenGL 4.5 core");
   EXPECT_NE(r.err.find("EGL_MESA_platform_surfaceless"), std::string::npos) << r.err;
   r = run("MESA_GL_VERSION_OVERRIDE=3.3 " + kTool + args);
