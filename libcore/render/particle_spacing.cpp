@@ -29,8 +29,11 @@ constexpr int kMaxRings = 4;
 double estimate_particle_spacing(const float* x, const float* y, const float* z, std::size_t count,
                                  std::size_t max_queries) {
   if (count < 2 || max_queries == 0) return 0;
-  double lo[3] = {x[0], y[0], z[0]}, hi[3] = {x[0], y[0], z[0]};
+  // Particles with a non-finite coordinate are left out.
+  const auto finite = [&](std::size_t n) { return std::isfinite(x[n]) && std::isfinite(y[n]) && std::isfinite(z[n]); };
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   for (std::size_t n = 0; n < count; ++n) {
+    if (!finite(n)) continue;
     const double p[3] = {x[n], y[n], z[n]};
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
   }
@@ -39,7 +42,7 @@ double estimate_particle_spacing(const float* x, const float* y, const float* z,
   // than the flattest side allows.
   double volume = 1, extent_max = 0;
   for (int a = 0; a < 3; ++a) extent_max = std::max(extent_max, hi[a] - lo[a]);
-  if (extent_max <= 0) return 0;
+  if (!(extent_max > 0)) return 0;
   for (int a = 0; a < 3; ++a) volume *= std::max(hi[a] - lo[a], extent_max * 1e-3);
   const double cell = std::cbrt(volume / static_cast<double>(count));
 
@@ -50,11 +53,13 @@ double estimate_particle_spacing(const float* x, const float* y, const float* z,
                    static_cast<std::int64_t>(std::floor((y[n] - lo[1]) / cell)),
                    static_cast<std::int64_t>(std::floor((z[n] - lo[2]) / cell))};
   };
-  for (std::size_t n = 0; n < count; ++n) grid[key_of(n)].push_back(static_cast<std::uint32_t>(n));
+  for (std::size_t n = 0; n < count; ++n)
+    if (finite(n)) grid[key_of(n)].push_back(static_cast<std::uint32_t>(n));
 
   const std::size_t stride = std::max<std::size_t>(1, count / max_queries);
   std::vector<double> nearest;
   for (std::size_t q = 0; q < count; q += stride) {
+    if (!finite(q)) continue;
     const CellKey c = key_of(q);
     double best2 = std::numeric_limits<double>::infinity();
     for (int ring = 1; ring <= kMaxRings; ++ring) {

@@ -367,12 +367,16 @@ Image Renderer::render(const RenderInput& in) {
   r.mark = std::chrono::steady_clock::now();
 
   // ---- geometry of this frame: particles, solids, ground, bounds
-  std::vector<float> positions(3 * in.count);
+  // Particles with a non-finite coordinate (a simulation that blew up) are left out.
+  std::vector<float> positions;
+  positions.reserve(3 * in.count);
   Aabb content;
   for (std::size_t i = 0; i < in.count; ++i) {
-    positions[3 * i] = in.x[i], positions[3 * i + 1] = in.y[i], positions[3 * i + 2] = in.z[i];
+    if (!std::isfinite(in.x[i]) || !std::isfinite(in.y[i]) || !std::isfinite(in.z[i])) continue;
+    positions.insert(positions.end(), {in.x[i], in.y[i], in.z[i]});
     content.add(Vec3d(in.x[i], in.y[i], in.z[i]));
   }
+  const std::size_t count = positions.size() / 3;
   if (!content.empty()) {
     content.min.array() -= in.particle_radius;
     content.max.array() += in.particle_radius;
@@ -488,7 +492,7 @@ Image Renderer::render(const RenderInput& in) {
   put(u.filter, s.filter_radius * rad, s.filter_max_pixels,
       (bilateral ? kBilateralRangeRatio : kRangeRatio) * rad, kClampRatio * rad);
   const std::size_t shadow_stride =
-      std::clamp<std::size_t>((in.count + kShadowParticles - 1) / kShadowParticles, 1, kMaxShadowStride);
+      std::clamp<std::size_t>((count + kShadowParticles - 1) / kShadowParticles, 1, kMaxShadowStride);
   const double shadow_radius = rad * std::cbrt(static_cast<double>(shadow_stride));
   put(u.misc, kGuardPixels, r.max_point_size,
       std::min<double>(shadow_radius * kFluidShadowSize / half_side, r.max_point_size), shadow_radius);
@@ -499,7 +503,7 @@ Image Renderer::render(const RenderInput& in) {
   gl::BindBufferBase(GL_UNIFORM_BUFFER, 0, r.uniforms.id);
   gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, r.particles.id);
 
-  const GLsizei sprite_vertices = static_cast<GLsizei>(in.count);
+  const GLsizei sprite_vertices = static_cast<GLsizei>(count);
   const float zero[4] = {0, 0, 0, 0};
   const float one = 1.0f;
   const float far_front[4] = {1, 1, 1, 1};
@@ -522,7 +526,7 @@ Image Renderer::render(const RenderInput& in) {
     r.mesh_shadow.use();
     r.draw_triangles(r.vao_mesh, solid_vertex_count);
     r.lap("solid shadow map");
-    if (in.count > 0) {
+    if (count > 0) {
       gl::BindFramebuffer(GL_FRAMEBUFFER, r.shadow_fluid_fb.id);
       gl::Viewport(0, 0, kFluidShadowSize, kFluidShadowSize);
       gl::Disable(GL_DEPTH_TEST);
@@ -534,7 +538,7 @@ Image Renderer::render(const RenderInput& in) {
       r.sprite_shadow.use();
       r.sprite_shadow.set("u_stride", static_cast<int>(shadow_stride));
       gl::BindVertexArray(r.vao_empty);
-      gl::DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(in.count / shadow_stride));
+      gl::DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(count / shadow_stride));
       gl::Disable(GL_BLEND);
       // thickness -> blur -> thickness
       const GLint dir = gl::GetUniformLocation(r.blur_shadow.id(), "u_direction");
@@ -583,7 +587,7 @@ Image Renderer::render(const RenderInput& in) {
   gl::ClearNamedFramebufferfv(r.fluid_fb.id, GL_COLOR, 1, zero);
   gl::ClearNamedFramebufferfv(r.fluid_fb.id, GL_DEPTH, 0, &one);
   gl::BindTextureUnit(0, r.scene_depth.id);
-  if (in.count > 0) {
+  if (count > 0) {
     gl::Enable(GL_BLEND);
     gl::BlendEquationi(0, GL_MIN);
     gl::BlendFunci(0, GL_ONE, GL_ONE);
@@ -606,7 +610,7 @@ Image Renderer::render(const RenderInput& in) {
 
   // ---- 4. smoothing and normals
   r.smoothed = r.fluid_depth.id;
-  if (s.filter != Filter::kNone && in.count > 0) {
+  if (s.filter != Filter::kNone && count > 0) {
     const Program& f = bilateral ? r.filter_bilateral : r.filter_narrow;
     const GLint dir = gl::GetUniformLocation(f.id(), "u_direction");
     f.use();
@@ -621,7 +625,7 @@ Image Renderer::render(const RenderInput& in) {
     gl::DrawArrays(GL_TRIANGLES, 0, 3);
     r.smoothed = r.filtered[1].id;
   }
-  if (in.count > 0) {
+  if (count > 0) {
     // Thickness: thickness -> thickness_blur -> thickness.
     const GLint dir = gl::GetUniformLocation(r.blur_thickness.id(), "u_direction");
     r.blur_thickness.use();

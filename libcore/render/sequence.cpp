@@ -206,8 +206,10 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
   const Aabb placed = reference_solids.bounds();
   if (!placed.empty()) box.add(placed.min), box.add(placed.max);
   Aabb fluid_box;
-  for (std::size_t i = 0; i < reference.fluid_count(); ++i)
-    fluid_box.add(Vec3d(reference.x[i], reference.y[i], reference.z[i]));
+  for (std::size_t i = 0; i < reference.fluid_count(); ++i) {
+    const Vec3d p(reference.x[i], reference.y[i], reference.z[i]);
+    if (p.allFinite()) fluid_box.add(p);
+  }
   if (!fluid_box.empty()) {
     fluid_box.min.array() -= radius;
     fluid_box.max.array() += radius;
@@ -251,7 +253,7 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
     write_file_atomically(fmt::format("{}/{:06d}.png", job.output_dir, f.number), png.data(), png.size());
     if (video) video->add_png(png);
     render_seconds += frame_clock.seconds();
-    if (on_frame) on_frame({i + 1, plan.frames.size(), f.number, clock.seconds()});
+    if (on_frame) on_frame({i + 1, plan.frames.size(), f.number, clock.seconds(), render_seconds});
   }
   if (video) {
     video->finish();

@@ -59,6 +59,7 @@ struct SequenceProgress {
   std::size_t done = 0, total = 0;
   int frame = 0;                 // number of the frame just written
   double seconds = 0;            // since the start
+  double render_seconds = 0;     // reading, drawing and writing the frames so far
 };
 
 struct SequenceReport {

@@ -1,5 +1,8 @@
 // Writes the synthetic splash of synthetic.h as a simulation output folder:
-//   make-splash OUTDIR [PARTICLES]  ->  OUTDIR/run.h5, OUTDIR/wall.h5, OUTDIR/frames/000000.h5
+//   make-splash OUTDIR [PARTICLES [broken]]
+//     ->  OUTDIR/run.h5, OUTDIR/wall.h5, OUTDIR/tank.h5, OUTDIR/frames/000000.h5
+// With "broken", the wall is a breakable solid cut into three fragments (bodies 1 to
+// 3, in OUTDIR/fragments.h5) that the frame shows flung apart and turned.
 // Used for the documentation picture (docs/rendering.md) and by hand.
 #include <cstdio>
 #include <cstdlib>
@@ -16,8 +19,10 @@ int main(int argc, char** argv) {
   const std::string dir = argv[1];
   const std::size_t particles = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 120000;
   std::filesystem::create_directories(dir + "/frames");
-  bw::render::test::write_wall_run(std::filesystem::absolute(dir).string(), bw::Vec3d::Zero(), true);
-  const bw::FrameData f = bw::render::test::splash_frame(particles);
+  const std::string abs = std::filesystem::absolute(dir).string();
+  bw::render::test::write_wall_run(abs, bw::Vec3d::Zero(), true);
+  bw::FrameData f = bw::render::test::splash_frame(particles);
+  if (argc > 3 && std::string(argv[3]) == "broken") bw::render::test::break_wall(abs, f);
   bw::write_frame(f, bw::frame_file_name(dir + "/frames", 0));
   std::fprintf(stderr, "%s: %zu particles\n", dir.c_str(), f.fluid_count());
   return 0;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <random>
 
+#include "io/fragments_file.h"
 #include "io/particles_file.h"
 #include "io/run_file.h"
 #include "mesh/shapes.h"
@@ -74,6 +75,37 @@ Aabb write_wall_run(const std::string& dir, const Vec3d& translation, bool tank)
   box.add(lo + translation);
   box.add(hi + translation);
   return box;
+}
+
+void break_wall(const std::string& dir, FrameData& frame) {
+  RunRecord run = read_run(dir + "/run.h5");
+  run.solids[0].kind = "breakable";
+  run.solids[0].body = 0;
+  BodyRecord root;
+  root.solid = 0;
+  root.reference_center = Vec3d(0, 0.575, 0.5);
+  run.bodies = {root};
+  FragmentSet set;
+  const double cuts[4] = {-1.0, -0.3, 0.35, 1.0};
+  for (int k = 0; k < 3; ++k) {
+    Fragment f;
+    f.mesh = mesh::box(Vec3d(cuts[k], 0.5, 0.0), Vec3d(cuts[k + 1], 0.65, 1.0));
+    f.body = k + 1;
+    f.seed = k;
+    set.fragments.push_back(f);
+    BodyRecord b;
+    b.solid = 0;
+    b.parent = 0;
+    b.reference_center = Vec3d(0.5 * (cuts[k] + cuts[k + 1]), 0.575, 0.5);
+    run.bodies.push_back(b);
+    frame.bodies.id.push_back(k + 1);
+    frame.bodies.position.push_back(b.reference_center + Vec3d(0.1 * (k - 1), -0.25 * k, 0.15 * k));
+    frame.bodies.orientation.emplace_back(Eigen::AngleAxisd(0.25 * k, Vec3d(1, 0.3 * (k - 1), 0).normalized()));
+    frame.bodies.linear_velocity.push_back(Vec3d::Zero());
+    frame.bodies.angular_velocity.push_back(Vec3d::Zero());
+  }
+  write_run(run, dir + "/run.h5");
+  write_fragments(set, dir + "/fragments.h5");
 }
 
 }  // namespace bw::render::test

@@ -31,4 +31,9 @@ FrameData splash_frame(std::size_t particles, int frame_number = 0);
 // at 0.4 m, walls 5 cm), in `dir`/tank.h5. Returns the wall's bounds in the world.
 Aabb write_wall_run(const std::string& dir, const Vec3d& translation = Vec3d::Zero(), bool tank = false);
 
+// Turns the wall of write_wall_run into a breakable solid (body 0) cut into three
+// fragments along x (bodies 1, 2, 3, written to `dir`/fragments.h5), and gives the
+// frame their poses: flung forward and up, each turned a little more.
+void break_wall(const std::string& dir, FrameData& frame);
+
 }  // namespace bw::render::test

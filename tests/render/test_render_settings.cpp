@@ -167,6 +167,12 @@ TEST(ParticleSpacing, MedianNearestNeighbourOfALattice) {
   }
   const float one = 1;
   EXPECT_EQ(br::estimate_particle_spacing(&one, &one, &one, 1), 0);
+  // Non-finite positions are left out.
+  bw::FrameData g;
+  br::test::add_block(g, Vec3d(0, 0, 0), Vec3d(0.3, 0.3, 0.3), 0.03, 0.0, 1);
+  const double before = br::estimate_particle_spacing(g.x.data(), g.y.data(), g.z.data(), g.fluid_count());
+  g.x.insert(g.x.begin(), std::nanf("")), g.y.insert(g.y.begin(), 0.f), g.z.insert(g.z.begin(), INFINITY);
+  EXPECT_EQ(br::estimate_particle_spacing(g.x.data(), g.y.data(), g.z.data(), g.fluid_count()), before);
 }
 
 // A dynamic solid's mesh is placed by x_world = R(q) (x_ref - c_ref) + position, where

@@ -214,6 +214,23 @@ TEST(Renderer, SolidsShowWhereTheirMeshesProject) {
   EXPECT_TRUE(same_pixel(image_moved, empty, int(at_old.x()), int(at_old.y())));
 }
 
+// Particles with a non-finite coordinate (a blown-up simulation) are left out: the
+// image is that of the others.
+TEST(Renderer, NonFiniteParticlesAreLeftOut) {
+  br::Renderer renderer(context(), small_settings());
+  bw::FrameData f;
+  br::test::add_ball(f, Vec3d(0, 0, 0.5), 0.2, 0.04, 0.1, 9);
+  br::Camera camera;
+  camera.position = Vec3d(0.5, -2.5, 1.2);
+  camera.target = Vec3d(0, 0, 0.5);
+  const br::Image clean = renderer.render(input_of(f, camera, 0.04));
+  const float nan = std::nanf(""), inf = INFINITY;
+  f.x.insert(f.x.end(), {nan, 0.f, 1.f});
+  f.y.insert(f.y.end(), {0.f, inf, 1.f});
+  f.z.insert(f.z.end(), {0.f, 0.f, -inf});
+  EXPECT_EQ(renderer.render(input_of(f, camera, 0.04)).rgb, clean.rgb);
+}
+
 // The same input gives the same bytes, also after rendering something else.
 TEST(Renderer, Deterministic) {
   br::Renderer renderer(context(), small_settings());

@@ -49,8 +49,9 @@ struct Options {
 };
 
 void print_summary(const Options& o, const bw::render::SequenceJob& job, const bw::render::SequenceReport& r) {
-  std::fprintf(stderr, "bw-render: %zu frames (%06d..%06d) -> %s in %s, %.0f ms per frame\n", r.frames, r.first,
-               r.last, o.output_dir.c_str(), bw::human_duration(r.seconds).c_str(), r.render_ms_per_frame);
+  std::fprintf(stderr, "bw-render: %zu frame%s (%06d..%06d) -> %s in %s, %.0f ms per frame\n", r.frames,
+               r.frames == 1 ? "" : "s", r.first, r.last, o.output_dir.c_str(), bw::human_duration(r.seconds).c_str(),
+               r.render_ms_per_frame);
   if (!r.video_path.empty()) std::fprintf(stderr, "  video        %s at %.3g fps\n", r.video_path.c_str(), r.fps);
   if (r.bodies_without_mesh)
     std::fprintf(stderr, "  note         up to %zu bodies per frame had no mesh to draw (give --fragments)\n",
@@ -102,7 +103,7 @@ int main(int argc, char** argv) {
     const bw::render::SequenceJob job = o.job();
     bw::ProgressLine progress(!o.quiet);
     const auto report = bw::render::render_sequence(job, [&](const bw::render::SequenceProgress& p) {
-      const double per_frame = p.seconds / static_cast<double>(p.done);
+      const double per_frame = p.render_seconds / static_cast<double>(p.done);
       progress.update(fmt::format("bw-render: frame {:06d} ({}/{}), {:.0f} ms per frame, {} left", p.frame, p.done,
                                   p.total, 1000 * per_frame,
                                   bw::human_duration(per_frame * static_cast<double>(p.total - p.done))),
