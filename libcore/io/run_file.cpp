@@ -63,6 +63,12 @@ void write_run(const RunRecord& run, const std::string& path) {
   frames.write("kinetic_energy", column<double>(f, [](const FrameStats& s) { return s.kinetic_energy; }));
   frames.write("potential_energy", column<double>(f, [](const FrameStats& s) { return s.potential_energy; }));
   frames.write("wall_time", column<double>(f, [](const FrameStats& s) { return s.wall_time; }));
+  frames.write("elastic_energy", column<double>(f, [](const FrameStats& s) { return s.elastic_energy; }));
+  frames.write("speed_max", column<double>(f, [](const FrameStats& s) { return s.speed_max; }));
+
+  // One float64 value per parameter: a one-row table for bw-info.
+  h5::Group parameters = root.create_group("parameters");
+  for (const auto& [name, value] : run.parameters) parameters.write<double>(name, std::vector<double>{value});
 
   h5::Group solids = root.create_group("solids");
   for (std::size_t i = 0; i < run.solids.size(); ++i) {
@@ -156,6 +162,9 @@ RunRecord read_run(const std::string& path) {
   const auto fluid = col("fluid"), boundary = col("boundary"), removed = col("removed");
   const auto emax = col("density_error_max"), emean = col("density_error_mean");
   const auto ke = col("kinetic_energy"), pe = col("potential_energy"), wall = col("wall_time");
+  // Columns added after the first files were written: zero when absent.
+  auto optional_col = [&](const char* name) { return frames.has(name) ? col(name) : std::vector<double>(nf, 0.0); };
+  const auto elastic = optional_col("elastic_energy"), speed = optional_col("speed_max");
   for (std::size_t i = 0; i < nf; ++i) {
     FrameStats s;
     s.frame = static_cast<std::int32_t>(frame[i]);
@@ -171,7 +180,18 @@ RunRecord read_run(const std::string& path) {
     s.kinetic_energy = ke[i];
     s.potential_energy = pe[i];
     s.wall_time = wall[i];
+    s.elastic_energy = elastic[i];
+    s.speed_max = speed[i];
     run.frames.push_back(s);
+  }
+
+  if (root.is_group("parameters")) {
+    const h5::Group parameters = root.open_group("parameters");
+    for (const std::string& name : parameters.children()) {
+      const auto v = parameters.read<double>(name);
+      if (v.size() != 1) fail_input("{}: expected one value, found {}", parameters.where(name), v.size());
+      run.parameters.emplace_back(name, v[0]);
+    }
   }
 
   const h5::Group solids = root.open_group("solids");

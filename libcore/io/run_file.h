@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/geometry.h"
@@ -42,6 +43,8 @@ struct FrameStats {
   double density_error_max = 0, density_error_mean = 0;
   double kinetic_energy = 0, potential_energy = 0;
   double wall_time = 0;           // seconds since the start of the run
+  double elastic_energy = 0;      // J, stored by compression (Tait law)
+  double speed_max = 0;           // m/s, fastest fluid particle
 };
 
 struct FractureEvent {
@@ -63,6 +66,9 @@ struct RunRecord {
   std::vector<BodyRecord> bodies;
   std::vector<FrameStats> frames;
   std::vector<FractureEvent> fractures;
+  // Derived values the simulator used (particle mass, smoothing length, stiffness,
+  // ...), by name, so that a run can be understood and reproduced from its output.
+  std::vector<std::pair<std::string, double>> parameters;
 };
 
 // Writes the whole record through a temporary file (called after every frame).

@@ -1,0 +1,479 @@
+#include "scene/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "common/error.h"
+
+namespace bw::scene {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Tables another tool owns (bw-render documents them in docs/rendering.md); the
+// simulator accepts them as they are.
+const std::set<std::string> kForeignTables = {"camera", "light", "render"};
+
+// Limits that keep a scene within what the solver can index and store.
+constexpr std::int64_t kMaxParticles = 1'000'000'000;   // ids are 32-bit on the device
+constexpr double kMaxFrames = 1e6;
+constexpr double kMinSupportRatio = 1.0;  // h / spacing
+constexpr double kMaxSupportRatio = 4.0;
+
+// Edit distance, for "did you mean" hints on unknown keys.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::table: return "a table";
+    default: return "a date or time";
+  }
+}
+
+// Reads the keys of one table, remembers which were read, and reports the rest as
+// unknown. Every message names the file and the key's full path.
+class Reader {
+ public:
+  Reader(const toml::table& table, std::string path, const std::string& file)
+      : table_(table), path_(std::move(path)), file_(file) {}
+
+  std::string key_path(std::string_view key) const {
+    return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+  }
+  [[noreturn]] void fail(std::string_view key, const std::string& message) const {
+    fail_input("{}: {}: {}", file_, key_path(key), message);
+  }
+  [[noreturn]] void fail_here(const std::string& message) const { fail_input("{}: {}: {}", file_, path_, message); }
+
+  bool has(std::string_view key) {
+    used_.insert(std::string(key));
+    return table_.contains(key);
+  }
+
+  const toml::node* node(std::string_view key) {
+    used_.insert(std::string(key));
+    return table_.get(key);
+  }
+
+  double to_number(const toml::node& n, const std::string& where) const {
+    if (auto v = n.value_exact<double>()) {
+      if (!std::isfinite(*v)) fail_input("{}: {}: {} is not a finite number", file_, where, *v);
+      return *v;
+    }
+    if (auto v = n.value_exact<std::int64_t>()) return static_cast<double>(*v);
+    fail_input("{}: {}: expected a number, found {}", file_, where, type_name(n));
+  }
+
+  double number(std::string_view key, double fallback) {
+    const toml::node* n = node(key);
+    return n ? to_number(*n, key_path(key)) : fallback;
+  }
+  double required_number(std::string_view key) {
+    if (!has(key)) fail(key, "missing (required)");
+    return number(key, 0);
+  }
+  std::int64_t integer(std::string_view key, std::int64_t fallback) {
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    if (auto v = n->value_exact<std::int64_t>()) return *v;
+    if (auto v = n->value_exact<double>()) fail(key, fmt::format("{} is not a whole number", *v));
+    fail(key, fmt::format("expected an integer, found {}", type_name(*n)));
+  }
+  std::string string(std::string_view key, const std::string& fallback) {
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    if (auto v = n->value_exact<std::string>()) return *v;
+    fail(key, fmt::format("expected a string, found {}", type_name(*n)));
+  }
+  template <int N>
+  Eigen::Matrix<double, N, 1> vector(std::string_view key, const Eigen::Matrix<double, N, 1>& fallback) {
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    const toml::array* a = n->as_array();
+    if (!a || static_cast<int>(a->size()) != N)
+      fail(key, fmt::format("expected an array of {} numbers, found {}", N,
+                            a ? fmt::format("{} values", a->size()) : type_name(*n)));
+    Eigen::Matrix<double, N, 1> out;
+    for (int i = 0; i < N; ++i) out[i] = to_number(*a->get(static_cast<std::size_t>(i)), fmt::format("{}[{}]", key_path(key), i));
+    return out;
+  }
+  Vec3d vec3(std::string_view key, const Vec3d& fallback) { return vector<3>(key, fallback); }
+  Vec3d required_vec3(std::string_view key) {
+    if (!has(key)) fail(key, "missing (required)");
+    return vec3(key, Vec3d::Zero());
+  }
+  std::vector<std::string> strings(std::string_view key, const std::vector<std::string>& fallback) {
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    const toml::array* a = n->as_array();
+    if (!a) fail(key, fmt::format("expected an array of strings, found {}", type_name(*n)));
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      auto v = a->get(i)->value_exact<std::string>();
+      if (!v) fail_input("{}: {}[{}]: expected a string, found {}", file_, key_path(key), i, type_name(*a->get(i)));
+      out.push_back(*v);
+    }
+    return out;
+  }
+  const toml::table* table(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) return nullptr;
+    if (!n->is_table()) fail(key, fmt::format("expected a table ([{}]), found {}", key_path(key), type_name(*n)));
+    return n->as_table();
+  }
+  // [[key]] arrays of tables; an empty list when absent.
+  std::vector<const toml::table*> tables(std::string_view key) {
+    const toml::node* n = node(key);
+    std::vector<const toml::table*> out;
+    if (!n) return out;
+    const toml::array* a = n->as_array();
+    if (!a || !a->is_array_of_tables())
+      fail(key, fmt::format("expected tables ([[{}]]), found {}", key_path(key), type_name(*n)));
+    for (const toml::node& t : *a) out.push_back(t.as_table());
+    return out;
+  }
+
+  // Every key not read is an error, with a hint when it is close to a known key.
+  void finish(const std::vector<std::string>& known_extra = {}) const {
+    for (const auto& [k, v] : table_) {
+      const std::string key(k.str());
+      if (used_.count(key)) continue;
+      std::string hint;
+      std::size_t best = 3;
+      std::vector<std::string> known(used_.begin(), used_.end());
+      known.insert(known.end(), known_extra.begin(), known_extra.end());
+      for (const std::string& candidate : known) {
+        const std::size_t d = edit_distance(key, candidate);
+        if (d < best) {
+          best = d;
+          hint = fmt::format(" (did you mean '{}'?)", candidate);
+        }
+      }
+      fail_input("{}: {}: unknown key{}", file_, key_path(key), hint);
+    }
+  }
+
+  const std::string& path() const { return path_; }
+
+ private:
+  const toml::table& table_;
+  std::string path_;
+  const std::string& file_;
+  std::set<std::string> used_;
+};
+
+void positive(Reader& r, std::string_view key, double v) {
+  if (!(v > 0)) r.fail(key, fmt::format("{} must be positive", v));
+}
+void non_negative(Reader& r, std::string_view key, double v) {
+  if (v < 0) r.fail(key, fmt::format("{} must not be negative", v));
+}
+void in_unit_interval(Reader& r, std::string_view key, double v) {
+  if (!(v > 0 && v <= 1)) r.fail(key, fmt::format("{} is outside (0, 1]", v));
+}
+
+bool box_inside(const Aabb& inner, const Aabb& outer) {
+  return (inner.min.array() >= outer.min.array()).all() && (inner.max.array() <= outer.max.array()).all();
+}
+
+std::string vec_text(const Vec3d& v) { return fmt::format("[{}, {}, {}]", v.x(), v.y(), v.z()); }
+
+void read_time(Reader& top, Scene& s) {
+  const toml::table* t = top.table("time");
+  if (!t) top.fail("time", "missing (required: at least time.end)");
+  Reader r(*t, "time", s.path);
+  TimeSettings& ts = s.time;
+  ts.end = r.required_number("end");
+  positive(r, "end", ts.end);
+  ts.frame_rate = r.number("frame_rate", ts.frame_rate);
+  positive(r, "frame_rate", ts.frame_rate);
+  if (ts.end * ts.frame_rate > kMaxFrames)
+    r.fail("frame_rate", fmt::format("{} frames per second over {} s is more than {} frames", ts.frame_rate, ts.end,
+                                     kMaxFrames));
+  ts.dt_min = r.number("dt_min", ts.dt_min);
+  positive(r, "dt_min", ts.dt_min);
+  ts.dt_max = r.number("dt_max", ts.dt_max);
+  positive(r, "dt_max", ts.dt_max);
+  if (ts.dt_max < ts.dt_min) r.fail("dt_max", fmt::format("{} is smaller than dt_min ({})", ts.dt_max, ts.dt_min));
+  ts.cfl = r.number("cfl", ts.cfl);
+  in_unit_interval(r, "cfl", ts.cfl);
+  ts.force_factor = r.number("force_factor", ts.force_factor);
+  in_unit_interval(r, "force_factor", ts.force_factor);
+  ts.viscous_factor = r.number("viscous_factor", ts.viscous_factor);
+  in_unit_interval(r, "viscous_factor", ts.viscous_factor);
+  r.finish();
+}
+
+void read_domain(Reader& top, Scene& s) {
+  const toml::table* t = top.table("domain");
+  if (!t) top.fail("domain", "missing (required: the box particles live in, domain.min and domain.max)");
+  Reader r(*t, "domain", s.path);
+  s.domain.min = r.required_vec3("min");
+  s.domain.max = r.required_vec3("max");
+  for (int a = 0; a < 3; ++a) {
+    if (!(s.domain.max[a] > s.domain.min[a]))
+      r.fail("max", fmt::format("{} must exceed min {} along every axis", vec_text(s.domain.max), vec_text(s.domain.min)));
+  }
+  r.finish();
+}
+
+void read_block(Reader& r, Scene& s) {
+  Block b;
+  b.min = r.required_vec3("min");
+  b.max = r.required_vec3("max");
+  for (int a = 0; a < 3; ++a) {
+    if (!(b.max[a] > b.min[a]))
+      r.fail("max", fmt::format("{} must exceed min {} along every axis", vec_text(b.max), vec_text(b.min)));
+    if (std::floor((b.max[a] - b.min[a]) / s.spacing + 1e-9) < 1)
+      r.fail("max", fmt::format("the block is thinner than the spacing ({}) along {}: it holds no particle", s.spacing,
+                                "xyz"[a]));
+  }
+  b.velocity = r.vec3("velocity", b.velocity);
+  Aabb box;
+  box.add(b.min);
+  box.add(b.max);
+  if (!box_inside(box, s.domain)) r.fail_here("the block reaches outside the domain");
+  r.finish();
+  s.blocks.push_back(b);
+}
+
+void read_emitter(Reader& r, Scene& s) {
+  Emitter e;
+  const std::string shape = r.string("shape", "");
+  if (shape == "disc") {
+    e.shape = Emitter::Shape::disc;
+  } else if (shape == "rectangle") {
+    e.shape = Emitter::Shape::rectangle;
+  } else if (shape.empty()) {
+    r.fail("shape", "missing (required: \"disc\" or \"rectangle\")");
+  } else {
+    r.fail("shape", fmt::format("'{}' is not \"disc\" or \"rectangle\"", shape));
+  }
+  e.center = r.required_vec3("center");
+  const Vec3d normal = r.required_vec3("normal");
+  if (normal.norm() < 1e-12) r.fail("normal", "must not be zero");
+  e.normal = normal.normalized();
+  if (e.shape == Emitter::Shape::disc) {
+    e.radius = r.required_number("radius");
+    positive(r, "radius", e.radius);
+    if (e.radius < 0.5 * s.spacing)
+      r.fail("radius", fmt::format("{} is less than half the spacing ({}): the disc holds no particle", e.radius, s.spacing));
+  } else {
+    if (!r.has("size")) r.fail("size", "missing (required for a rectangle: [width, height])");
+    e.size = r.vector<2>("size", e.size);
+    for (int a = 0; a < 2; ++a) {
+      if (!(e.size[a] >= s.spacing))
+        r.fail("size", fmt::format("{} is smaller than the spacing ({})", e.size[a], s.spacing));
+    }
+    e.up = r.vec3("up", Vec3d::Zero());
+    if (r.has("up")) {
+      if (e.up.norm() < 1e-12) r.fail("up", "must not be zero");
+      if (e.up.normalized().cross(e.normal).norm() < 1e-6) r.fail("up", "must not be parallel to the normal");
+    }
+  }
+  e.speed = r.required_number("speed");
+  positive(r, "speed", e.speed);
+  e.start = r.number("start", 0);
+  non_negative(r, "start", e.start);
+  e.stop = r.number("stop", std::numeric_limits<double>::infinity());
+  if (!(e.stop > e.start)) r.fail("stop", fmt::format("{} must be later than start ({})", e.stop, e.start));
+  Aabb point;
+  point.add(e.center);
+  if (!box_inside(point, s.domain)) r.fail("center", fmt::format("{} is outside the domain", vec_text(e.center)));
+  r.finish();
+  s.emitters.push_back(e);
+}
+
+void read_fluid(Reader& top, Scene& s) {
+  const toml::table* t = top.table("fluid");
+  if (!t) return;
+  Reader r(*t, "fluid", s.path);
+  FluidSettings& f = s.fluid;
+  f.rho0 = r.number("rho0", f.rho0);
+  positive(r, "rho0", f.rho0);
+  const bool has_k = r.has("k"), has_c0 = r.has("c0");
+  if (has_k && has_c0) r.fail("c0", "give either k or c0, not both");
+  if (has_k) {
+    f.k = r.number("k", 0);
+    positive(r, "k", f.k);
+  }
+  if (has_c0) {
+    f.c0 = r.number("c0", 0);
+    positive(r, "c0", f.c0);
+  }
+  f.gamma = r.number("gamma", f.gamma);
+  if (!(f.gamma >= 1)) r.fail("gamma", fmt::format("{} must be at least 1", f.gamma));
+  f.mu = r.number("mu", f.mu);
+  non_negative(r, "mu", f.mu);
+  f.mu_b = r.number("mu_b", f.mu);
+  non_negative(r, "mu_b", f.mu_b);
+  f.gamma1 = r.number("gamma1", f.gamma1);
+  non_negative(r, "gamma1", f.gamma1);
+  if (r.has("gamma2")) {
+    f.gamma2 = r.number("gamma2", f.gamma2);
+    non_negative(r, "gamma2", f.gamma2);
+  }
+  if (r.has("max_particles")) {
+    f.max_particles = r.integer("max_particles", 0);
+    if (f.max_particles < 1) r.fail("max_particles", fmt::format("{} must be at least 1", f.max_particles));
+    if (f.max_particles > kMaxParticles)
+      r.fail("max_particles", fmt::format("{} is more than {}", f.max_particles, kMaxParticles));
+  }
+  const auto blocks = r.tables("block");
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    Reader b(*blocks[i], fmt::format("fluid.block[{}]", i), s.path);
+    read_block(b, s);
+  }
+  const auto emitters = r.tables("emitter");
+  for (std::size_t i = 0; i < emitters.size(); ++i) {
+    Reader e(*emitters[i], fmt::format("fluid.emitter[{}]", i), s.path);
+    read_emitter(e, s);
+  }
+  r.finish();
+}
+
+void read_solid(Reader& r, Scene& s) {
+  Solid solid;
+  const std::string given = r.string("particles", "");
+  if (given.empty()) r.fail("particles", "missing (required: a particle file written by bw-sample)");
+  fs::path p(given);
+  if (p.is_relative()) p = fs::path(s.folder) / p;
+  p = p.lexically_normal();
+  std::error_code ec;
+  if (!fs::exists(p, ec)) r.fail("particles", fmt::format("{}: no such file", given));
+  if (fs::is_directory(p, ec)) r.fail("particles", fmt::format("{}: is a folder, not a particle file", given));
+  solid.particles = p.string();
+  solid.particles_given = given;
+  solid.name = r.string("name", fs::path(given).stem().string());
+  solid.translation = r.vec3("translation", solid.translation);
+  solid.rotation_degrees = r.vec3("rotation", solid.rotation_degrees);
+  solid.scale = r.number("scale", solid.scale);
+  positive(r, "scale", solid.scale);
+  r.finish();
+  s.solids.push_back(solid);
+}
+
+void read_output(Reader& top, Scene& s) {
+  std::vector<std::string> fields = {"velocity"};
+  if (const toml::table* t = top.table("output")) {
+    Reader r(*t, "output", s.path);
+    fields = r.strings("fields", fields);
+    r.finish();
+  }
+  s.fields = FrameFields{};
+  for (const std::string& f : fields) {
+    if (f == "velocity") s.fields.velocity = true;
+    else if (f == "density") s.fields.density = true;
+    else if (f == "pressure") s.fields.pressure = true;
+    else if (f == "id") s.fields.id = true;
+    else if (f == "boundary") s.fields.boundary = true;
+    else {
+      std::string known;
+      for (const auto& k : field_names()) known += (known.empty() ? "" : ", ") + k;
+      fail_input("{}: output.fields: '{}' is not a field ({})", s.path, f, known);
+    }
+  }
+  s.field_names = fields;
+}
+
+}  // namespace
+
+const std::vector<std::string>& field_names() {
+  static const std::vector<std::string> names = {"velocity", "density", "pressure", "id", "boundary"};
+  return names;
+}
+
+Eigen::Quaterniond Solid::rotation() const {
+  const Vec3d r = rotation_degrees * (std::numbers::pi / 180.0);
+  const Eigen::Quaterniond q = Eigen::AngleAxisd(r.z(), Vec3d::UnitZ()) * Eigen::AngleAxisd(r.y(), Vec3d::UnitY()) *
+                               Eigen::AngleAxisd(r.x(), Vec3d::UnitX());
+  return q.normalized();
+}
+
+Vec3d Solid::to_world(const Vec3d& p) const { return rotation() * (scale * p) + translation; }
+
+Scene parse_scene(std::string_view text, const std::string& path) {
+  Scene s;
+  s.path = path;
+  s.text = std::string(text);
+  std::error_code ec;
+  const fs::path abs = fs::absolute(fs::path(path), ec);
+  s.folder = abs.parent_path().string();
+
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    const auto& where = e.source().begin;
+    std::string what(e.description());
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    fail_input("{}:{}:{}: {}", path, where.line, where.column, what);
+  }
+
+  Reader top(root, "", s.path);
+  s.spacing = top.required_number("spacing");
+  positive(top, "spacing", s.spacing);
+  s.smoothing_length = top.number("smoothing_length", 2 * s.spacing);
+  positive(top, "smoothing_length", s.smoothing_length);
+  const double ratio = s.smoothing_length / s.spacing;
+  if (ratio < kMinSupportRatio - 1e-9 || ratio > kMaxSupportRatio + 1e-9)
+    top.fail("smoothing_length", fmt::format("{} is {:.3g} spacings; it must be between {} and {} (default 2)",
+                                             s.smoothing_length, ratio, kMinSupportRatio, kMaxSupportRatio));
+  s.gravity = top.vec3("gravity", s.gravity);
+  read_time(top, s);
+  read_domain(top, s);
+  read_fluid(top, s);
+  const auto solids = top.tables("solid");
+  for (std::size_t i = 0; i < solids.size(); ++i) {
+    Reader r(*solids[i], fmt::format("solid[{}]", i), s.path);
+    read_solid(r, s);
+  }
+  read_output(top, s);
+  for (const std::string& t : kForeignTables) {
+    if (top.has(t) && !root.get(t)->is_table()) top.fail(t, "expected a table");
+  }
+  top.finish();
+  if (s.blocks.empty() && s.emitters.empty())
+    fail_input("{}: fluid: the scene has no fluid (add a [[fluid.block]] or a [[fluid.emitter]])", s.path);
+  return s;
+}
+
+Scene load_scene(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) fail_input("{}: no such file", path);
+  if (fs::is_directory(path, ec)) fail_input("{}: is a folder, not a scene file", path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail_input("{}: cannot be read", path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_scene(ss.str(), path);
+}
+
+}  // namespace bw::scene

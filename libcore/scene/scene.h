@@ -1,0 +1,106 @@
+// Scene files (TOML): what bw-sim simulates. docs/scene.md is the reference of every
+// key with its unit and default; this header is its in-memory form.
+//
+// Loading checks everything that can be checked without a device: syntax, unknown
+// keys, types, ranges, that particle files exist, that blocks and emitters lie in the
+// domain. Errors are InputError with one line naming the file and the key's path:
+//   "scene.toml: solid[2].scale: -1 must be positive"
+// Scenes are z-up, in SI units (m, s, kg). Paths are relative to the scene file.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/geometry.h"
+#include "io/frame_file.h"
+
+namespace bw::scene {
+
+struct TimeSettings {
+  double end = 0;              // s, > 0 (required)
+  double frame_rate = 60;      // frames per second
+  double dt_min = 1e-6;        // s
+  double dt_max = 2e-3;        // s
+  double cfl = 0.4;            // lambda_v: dt <= cfl h / (c0 + max|v|)
+  double force_factor = 0.25;  // lambda_f: dt <= force_factor sqrt(h / max|a|)
+  double viscous_factor = 0.125;  // dt <= viscous_factor h^2 rho0 / max(mu, mu_b)
+};
+
+struct FluidSettings {
+  double rho0 = 998;           // kg/m^3
+  double k = 0;                // Tait stiffness (Pa); 0 = from c0
+  double c0 = 0;               // speed of sound (m/s); 0 = 10 x the scene's largest speed
+  double gamma = 7;
+  double mu = 0.05;            // viscosity (Pa s)
+  double mu_b = 0.05;          // boundary friction (Pa s); default: mu
+  double gamma1 = 1;           // weight of the boundary term in the density
+  double gamma2 = -1;          // weight of the boundary pressure force; < 0: gamma1 / 2
+  std::int64_t max_particles = 0;  // MFP; 0 = what the blocks and emitters need
+};
+
+// A box filled with fluid particles on a cubic lattice of the scene's spacing:
+// points min + (i + 1/2) spacing (per axis) that lie inside the box.
+struct Block {
+  Vec3d min = Vec3d::Zero(), max = Vec3d::Zero();
+  Vec3d velocity = Vec3d::Zero();  // m/s
+};
+
+// A disc or rectangle that injects fluid along its normal at `speed` from `start`
+// to `stop`: one layer of particles every time the fluid has moved one spacing.
+struct Emitter {
+  enum class Shape { disc, rectangle };
+  Shape shape = Shape::disc;
+  Vec3d center = Vec3d::Zero();
+  Vec3d normal = Vec3d::UnitZ();   // unit, direction of the flow
+  double radius = 0;               // disc (m)
+  Eigen::Vector2d size = Eigen::Vector2d::Zero();  // rectangle: along `up` x normal and `up` (m)
+  Vec3d up = Vec3d::Zero();        // rectangle: in-plane direction of size[1]; zero = automatic
+  double speed = 0;                // m/s, > 0
+  double start = 0;                // s
+  double stop = 0;                 // s; infinity (the default): until the end of the run
+};
+
+// A solid sampled by bw-sample. Static for now: its boundary particles stay put.
+// The table is meant to grow (dynamic, density, breakable, frc, anchored, friction,
+// restitution) without changing what is here.
+struct Solid {
+  std::string name;                // default: the particle file's stem
+  std::string particles;           // absolute path of the particle file
+  std::string particles_given;     // the path as written in the scene
+  Vec3d translation = Vec3d::Zero();
+  Vec3d rotation_degrees = Vec3d::Zero();  // about x, then y, then z (fixed axes)
+  double scale = 1;
+  // x_world = rotation * (scale * x_file) + translation
+  Eigen::Quaterniond rotation() const;
+  Vec3d to_world(const Vec3d& p) const;
+};
+
+struct Scene {
+  std::string path;                // as given
+  std::string text;                // the file's text
+  std::string folder;              // absolute folder of the scene file
+  double spacing = 0;              // particle spacing (m), > 0 (required)
+  double smoothing_length = 0;     // h (m); default 2 x spacing
+  Vec3d gravity = Vec3d(0, 0, -9.81);
+  TimeSettings time;
+  FluidSettings fluid;
+  std::vector<Block> blocks;
+  std::vector<Emitter> emitters;
+  std::vector<Solid> solids;
+  Aabb domain;                     // required
+  FrameFields fields;              // what frames hold besides positions
+  std::vector<std::string> field_names;
+};
+
+// Reads and checks a scene file. Throws InputError "<path>: <key>: <problem>".
+Scene load_scene(const std::string& path);
+
+// Parses scene text; `path` names it in messages and anchors relative paths.
+Scene parse_scene(std::string_view text, const std::string& path);
+
+// The field names [output] fields accepts.
+const std::vector<std::string>& field_names();
+
+}  // namespace bw::scene

@@ -1,0 +1,257 @@
+#include "sim/run.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <regex>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "common/terminal.h"
+#include "common/text.h"
+#include "io/frame_file.h"
+#include "io/run_file.h"
+
+namespace bw::sim {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Frame f is at f / frame_rate; the last one at or before the end (up to rounding).
+constexpr double kFrameSlack = 1e-9;
+// Relaxing the initial fluid against the walls stops below this compression
+// (max(0, rho/rho0 - 1)) or after this many steps (a full closed box cannot relax).
+constexpr double kRelaxTolerance = 0.005;
+constexpr int kRelaxMaxSteps = 500;
+
+int last_frame(double end_time, double frame_rate) {
+  return static_cast<int>(std::floor(end_time * frame_rate + kFrameSlack));
+}
+
+// Removes frame files of an earlier run in the same folder, so that the folder holds
+// this run only. Only names this tool writes (six digits .h5) are touched.
+void remove_old_frames(const fs::path& folder) {
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) return;
+  static const std::regex pattern("[0-9]{6}\\.h5");
+  for (const auto& entry : fs::directory_iterator(folder, ec)) {
+    if (entry.is_regular_file() && std::regex_match(entry.path().filename().string(), pattern))
+      fs::remove(entry.path(), ec);
+  }
+}
+
+}  // namespace
+
+struct Simulation::Impl {
+  scene::Scene scene;
+  RunOptions options;
+  Setup setup;
+  std::unique_ptr<compute::Context> context;
+  std::unique_ptr<Solver> solver;
+  double end_time = 0;
+};
+
+Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& device, RunOptions options)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& s = *impl_;
+  s.scene = scene;
+  s.options = std::move(options);
+  s.end_time = s.options.end_time > 0 ? s.options.end_time : scene.time.end;
+  if (last_frame(s.end_time, scene.time.frame_rate) < 1)
+    fail_input("{}: time.end: {} s is shorter than one frame at {} frames per second", scene.path, s.end_time,
+               scene.time.frame_rate);
+  if (s.options.output.empty()) fail_input("no output folder given (-o OUTDIR)");
+  const fs::path out(s.options.output);
+  std::error_code ec;
+  if (fs::exists(out, ec) && !fs::is_directory(out, ec))
+    fail_input("{}: exists and is not a folder", s.options.output);
+  s.setup = prepare(scene, s.end_time);
+  s.context = std::make_unique<compute::Context>(device);
+  s.solver = std::make_unique<Solver>(s.setup, *s.context);
+}
+
+Simulation::~Simulation() = default;
+
+Solver& Simulation::solver() { return *impl_->solver; }
+const Setup& Simulation::setup() const { return impl_->setup; }
+
+RunSummary Simulation::run() {
+  Impl& s = *impl_;
+  Solver& solver = *s.solver;
+  const Parameters& p = solver.parameters();
+  const scene::Scene& scene = s.scene;
+
+  const fs::path out(s.options.output);
+  const fs::path frames_dir = out / "frames";
+  std::error_code ec;
+  fs::create_directories(frames_dir, ec);
+  if (ec) fail_run("{}: cannot create the folder: {}", frames_dir.string(), ec.message());
+  remove_old_frames(frames_dir);
+  const std::string run_path = (out / "run.h5").string();
+
+  RunRecord record;
+  record.scene_text = scene.text;
+  record.scene_path = fs::absolute(scene.path, ec).lexically_normal().string();
+  record.device = s.context->device().label();
+  record.tool = s.options.tool + " " BW_VERSION;
+  for (const scene::Solid& solid : scene.solids) {
+    SolidRecord r;
+    r.name = solid.name;
+    r.particles = solid.particles;
+    r.kind = "static";
+    r.translation = solid.translation;
+    r.rotation = solid.rotation();
+    r.scale = solid.scale;
+    record.solids.push_back(r);
+  }
+  record.parameters = {{"spacing", p.spacing},
+                       {"smoothing_length", p.h},
+                       {"particle_mass", p.mass},
+                       {"rho0", p.rho0},
+                       {"stiffness", p.k},
+                       {"c0", p.c0},
+                       {"gamma", p.gamma},
+                       {"mu", p.mu},
+                       {"mu_b", p.mu_b},
+                       {"gamma1", p.gamma1},
+                       {"gamma2", p.gamma2},
+                       {"end_time", p.end_time},
+                       {"frame_rate", p.frame_rate},
+                       {"dt_min", p.dt_min},
+                       {"dt_max", p.dt_max},
+                       {"speed_limit", p.speed_limit},
+                       {"max_particles", static_cast<double>(p.max_particles)},
+                       {"boundary_particles", static_cast<double>(solver.boundary_count())}};
+
+  // Let the fluid settle against the walls before t = 0 (Solver::relax).
+  const RelaxInfo relaxed = solver.relax(kRelaxMaxSteps, kRelaxTolerance);
+  record.parameters.push_back({"relax_steps", static_cast<double>(relaxed.steps)});
+  record.parameters.push_back({"relax_largest_move", relaxed.largest_move});
+
+  RunSummary sum;
+  sum.relax = relaxed;
+  sum.device = record.device;
+  sum.boundary = solver.boundary_count();
+  sum.capacity = solver.capacity();
+  sum.device_bytes = solver.device_bytes();
+  sum.dt_min = std::numeric_limits<double>::infinity();
+
+  ProgressLine progress(s.options.progress);
+  Stopwatch clock;
+  const int frames = last_frame(s.end_time, p.frame_rate);
+  double previous_energy = 0;
+  double mean_error_sum = 0;
+
+  auto write_frame_now = [&](int f, double dt_lo, double dt_hi) {
+    const FluidStats st = solver.stats();
+    FrameData data = solver.frame(scene.fields, f);
+    data.time = f / p.frame_rate;
+    write_frame(data, frame_file_name(frames_dir.string(), f));
+    FrameStats row;
+    row.frame = f;
+    row.time = data.time;
+    row.steps = solver.steps();
+    row.dt_min = dt_lo;
+    row.dt_max = dt_hi;
+    row.fluid = st.fluid;
+    row.boundary = solver.boundary_count();
+    row.removed = solver.removed_count();
+    row.density_error_max = st.density_error_max;
+    row.density_error_mean = st.density_error_mean;
+    row.kinetic_energy = st.kinetic;
+    row.potential_energy = st.potential;
+    row.elastic_energy = st.elastic;
+    row.speed_max = st.speed_max;
+    row.wall_time = clock.seconds();
+    record.frames.push_back(row);
+    write_run(record, run_path);
+
+    const double energy = st.kinetic + st.potential + st.elastic;
+    if (f == 0) sum.energy_start = energy;
+    else sum.energy_max_rise = std::max(sum.energy_max_rise, energy - previous_energy);
+    previous_energy = energy;
+    sum.energy_end = energy;
+    if (st.density_error_max > sum.worst_density_error || f == 0) {
+      sum.worst_density_error = st.density_error_max;
+      sum.worst_density_frame = f;
+    }
+    mean_error_sum += st.density_error_mean;
+    sum.frames = f + 1;
+    sum.fluid_end = st.fluid;
+  };
+
+  try {
+    write_frame_now(0, 0, 0);
+    for (int f = 1; f <= frames; ++f) {
+      const double target = f / p.frame_rate;
+      double lo = std::numeric_limits<double>::infinity(), hi = 0;
+      while (solver.time() < target) {
+        const std::int64_t particles = solver.fluid_count();
+        const StepInfo info = solver.step(target);
+        sum.particle_steps += static_cast<double>(particles);
+        lo = std::min(lo, info.dt);
+        hi = std::max(hi, info.dt);
+        if (progress.active()) {
+          const double wall = clock.seconds();
+          const double rate = wall > 0 ? solver.steps() / wall : 0;
+          const double left = solver.time() > 0 ? wall / solver.time() * (s.end_time - solver.time()) : 0;
+          progress.update(fmt::format("frame {}/{}  t {:.3f} s  {:.0f} steps/s  {} particles  {} particle-steps/s  "
+                                      "left {}",
+                                      f, frames, solver.time(), rate, human_count(static_cast<double>(particles)),
+                                      human_count(wall > 0 ? sum.particle_steps / wall : 0), human_duration(left)));
+        }
+      }
+      sum.dt_min = std::min(sum.dt_min, lo);
+      sum.dt_max = std::max(sum.dt_max, hi);
+      write_frame_now(f, lo, hi);
+    }
+  } catch (const Error& e) {
+    progress.clear();
+    record.status = e.what();
+    try {
+      write_run(record, run_path);
+    } catch (const Error&) {
+      // The original error matters more than a failure to record it.
+    }
+    throw;
+  }
+  progress.clear();
+  record.status = "complete";
+  write_run(record, run_path);
+
+  sum.steps = solver.steps();
+  sum.simulated = solver.time();
+  sum.wall_seconds = clock.seconds();
+  sum.removed = solver.removed_count();
+  sum.emitters_capped = solver.emitters_capped();
+  sum.mean_density_error = sum.frames ? mean_error_sum / sum.frames : 0;
+  if (!std::isfinite(sum.dt_min)) sum.dt_min = 0;
+  return sum;
+}
+
+std::string format_summary(const RunSummary& r) {
+  std::string out;
+  out += fmt::format("  frames       {} ({:.4g} s simulated) in {}\n", r.frames, r.simulated,
+                     human_duration(r.wall_seconds));
+  out += fmt::format("  steps        {}, dt {:.3g} .. {:.3g} s (after {} relaxation steps: compression {:.2f}% -> "
+                     "{:.2f}%, largest move {:.3g} m)\n",
+                     r.steps, r.dt_min, r.dt_max, r.relax.steps, 100 * r.relax.density_error_before,
+                     100 * r.relax.density_error_after, r.relax.largest_move);
+  out += fmt::format("  throughput   {} particle-steps/s, {:.3g} s of wall time per simulated second\n",
+                     human_count(r.wall_seconds > 0 ? r.particle_steps / r.wall_seconds : 0),
+                     r.simulated > 0 ? r.wall_seconds / r.simulated : 0);
+  out += fmt::format("  particles    {} fluid at the end ({} removed at the domain), {} boundary{}\n", r.fluid_end,
+                     r.removed, r.boundary, r.emitters_capped ? "; emitters held back by max_particles" : "");
+  out += fmt::format("  density      worst error {:.2f}% (frame {}), mean {:.3f}%\n", 100 * r.worst_density_error,
+                     r.worst_density_frame, 100 * r.mean_density_error);
+  const double scale = std::max(std::abs(r.energy_start), 1e-30);
+  out += fmt::format("  energy       {:.6g} J -> {:.6g} J ({:+.2f}%), largest rise between frames {:.3g} J\n",
+                     r.energy_start, r.energy_end, 100 * (r.energy_end - r.energy_start) / scale, r.energy_max_rise);
+  out += fmt::format("  device       {}, {} ({:.0f} bytes per fluid particle)\n", r.device, human_bytes(r.device_bytes),
+                     r.capacity > 0 ? static_cast<double>(r.device_bytes) / static_cast<double>(r.capacity) : 0.0);
+  return out;
+}
+
+}  // namespace bw::sim

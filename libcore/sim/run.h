@@ -1,0 +1,71 @@
+// A whole simulation run: frames, the run file, progress and the summary (what
+// bw-sim does between parsing its options and printing its summary).
+//
+// Output (docs/formats.md): OUTDIR/frames/NNNNNN.h5 for frames 0, 1, ... at times
+// frame / frame_rate up to the end time, and OUTDIR/run.h5, rewritten (atomically)
+// after every frame with the statistics so far and status "running", then
+// "complete", or the error that stopped the run. Frames written before an error stay
+// valid.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "compute/device.h"
+#include "scene/scene.h"
+#include "sim/solver.h"
+
+namespace bw::sim {
+
+struct RunOptions {
+  std::string output;          // OUTDIR
+  double end_time = 0;         // > 0: replaces the scene's time.end
+  bool progress = true;        // a progress line on stderr when it is a terminal
+  std::string tool = "bw-sim"; // recorded in the run file with the version
+};
+
+struct RunSummary {
+  int frames = 0;                      // frames written
+  std::int64_t steps = 0;
+  double simulated = 0;                // s
+  double wall_seconds = 0;
+  double particle_steps = 0;           // sum over steps of the fluid particles
+  double dt_min = 0, dt_max = 0;
+  double worst_density_error = 0;      // max over frames of max(0, rho/rho0 - 1)
+  int worst_density_frame = 0;
+  double mean_density_error = 0;       // mean over frames of the frame means
+  double energy_start = 0, energy_end = 0;  // kinetic + potential + elastic (J)
+  double energy_max_rise = 0;          // largest rise of the total between frames (J)
+  std::int64_t fluid_end = 0, removed = 0, boundary = 0;
+  bool emitters_capped = false;
+  std::uint64_t device_bytes = 0;
+  std::int64_t capacity = 0;
+  std::string device;
+  RelaxInfo relax;                     // relaxing the initial fluid against the walls
+};
+
+class Simulation {
+ public:
+  // Checks the scene against everything it needs (particle files, sizes, memory),
+  // compiles the kernels and uploads the initial state; writes nothing. Throws
+  // InputError for bad input, RunError for a device failure.
+  Simulation(const scene::Scene& scene, const compute::DeviceInfo& device, RunOptions options);
+  ~Simulation();
+
+  // Runs to the end, writing frames and the run file. Throws RunError when the run
+  // stops on an error (after recording it in the run file).
+  RunSummary run();
+
+  Solver& solver();
+  const Setup& setup() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Lines for people: steps, wall time, throughput, density error, energy.
+std::string format_summary(const RunSummary& summary);
+
+}  // namespace bw::sim

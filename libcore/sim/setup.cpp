@@ -1,0 +1,261 @@
+#include "sim/setup.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "io/particles_file.h"
+
+namespace bw::sim {
+namespace {
+
+// c0 = this factor times the largest speed the scene can produce when neither k nor
+// c0 is given: the usual WCSPH rule, which keeps the density error near 1%.
+constexpr double kSoundSpeedFactor = 10.0;
+// The guard stops a run whose fastest particle exceeds this factor times the largest
+// speed the scene can produce (or c0, if larger): a splash does not go there, a
+// numerical blow-up does.
+constexpr double kGuardSpeedFactor = 5.0;
+// A solid sampled coarser than this many fluid spacings lets fluid leak through.
+constexpr double kMaxSolidSpacingRatio = 1.5;
+// Largest neighbour grid: cell indices are 32-bit keys, start[] holds one per cell.
+constexpr std::int64_t kMaxGridCells = std::int64_t{1} << 30;
+// Lattice counts are floor(length / spacing + this), so that a length of exactly n
+// spacings (up to rounding) gives n points.
+constexpr double kLatticeSlack = 1e-9;
+
+double poly6(double r2, double h) {
+  const double h2 = h * h;
+  if (r2 >= h2) return 0;
+  const double d = h2 - r2;
+  return 315.0 / (64.0 * std::numbers::pi * std::pow(h, 9)) * d * d * d;
+}
+
+std::int64_t lattice_count(double length, double spacing) {
+  return static_cast<std::int64_t>(std::floor(length / spacing + kLatticeSlack));
+}
+
+// Two unit vectors spanning the plane perpendicular to n; u x w = n. `up` (may be
+// zero) fixes w; otherwise w is the world axis least parallel to n, projected
+// (z first: scenes are z-up).
+void plane_basis(const Vec3d& n, const Vec3d& up, Vec3d& u, Vec3d& w) {
+  Vec3d a = up;
+  if (a.norm() < 1e-12) a = std::abs(n.z()) < 0.9 ? Vec3d::UnitZ() : Vec3d::UnitY();
+  w = (a - a.dot(n) * n).normalized();
+  u = w.cross(n);
+}
+
+}  // namespace
+
+double lattice_kernel_sum(double spacing, double h) {
+  const int reach = static_cast<int>(std::ceil(h / spacing));
+  double sum = 0;
+  for (int k = -reach; k <= reach; ++k)
+    for (int j = -reach; j <= reach; ++j)
+      for (int i = -reach; i <= reach; ++i) sum += poly6(spacing * spacing * (i * i + j * j + k * k), h);
+  return sum;
+}
+
+void ParticleArrays::push(const Vec3d& p, const Vec3d& v) {
+  x.push_back(static_cast<float>(p.x()));
+  y.push_back(static_cast<float>(p.y()));
+  z.push_back(static_cast<float>(p.z()));
+  vx.push_back(static_cast<float>(v.x()));
+  vy.push_back(static_cast<float>(v.y()));
+  vz.push_back(static_cast<float>(v.z()));
+}
+
+double EmitterLattice::distance_by(double t) const {
+  if (t <= start) return 0;
+  return speed * (std::min(t, stop) - start);
+}
+
+std::int64_t EmitterLattice::layers_by(double t, double spacing) const {
+  return lattice_count(distance_by(t), spacing);
+}
+
+std::vector<Vec3d> emitter_points(const scene::Emitter& e, double spacing) {
+  Vec3d u, w;
+  plane_basis(e.normal, e.shape == scene::Emitter::Shape::rectangle ? e.up : Vec3d::Zero(), u, w);
+  std::vector<Vec3d> points;
+  if (e.shape == scene::Emitter::Shape::disc) {
+    const int reach = static_cast<int>(std::floor(e.radius / spacing + kLatticeSlack));
+    const double r2 = e.radius * e.radius * (1 + kLatticeSlack);
+    for (int j = -reach; j <= reach; ++j)
+      for (int i = -reach; i <= reach; ++i) {
+        const double a = i * spacing, b = j * spacing;
+        if (a * a + b * b <= r2) points.push_back(e.center + a * u + b * w);
+      }
+  } else {
+    const std::int64_t na = lattice_count(e.size[0], spacing), nb = lattice_count(e.size[1], spacing);
+    for (std::int64_t j = 0; j < nb; ++j)
+      for (std::int64_t i = 0; i < na; ++i) {
+        const double a = (static_cast<double>(i) - 0.5 * static_cast<double>(na - 1)) * spacing;
+        const double b = (static_cast<double>(j) - 0.5 * static_cast<double>(nb - 1)) * spacing;
+        points.push_back(e.center + a * u + b * w);
+      }
+  }
+  return points;
+}
+
+Setup prepare(const scene::Scene& s, double end_time) {
+  Setup out;
+  Parameters& p = out.params;
+  const scene::FluidSettings& f = s.fluid;
+  p.spacing = s.spacing;
+  p.h = s.smoothing_length;
+  p.rho0 = f.rho0;
+  p.gamma = f.gamma;
+  p.mu = f.mu;
+  p.mu_b = f.mu_b;
+  p.gamma1 = f.gamma1;
+  p.gamma2 = f.gamma2 >= 0 ? f.gamma2 : 0.5 * p.gamma1;
+  p.gravity = s.gravity;
+  p.end_time = end_time;
+  p.frame_rate = s.time.frame_rate;
+  p.dt_min = s.time.dt_min;
+  p.dt_max = s.time.dt_max;
+  p.cfl = s.time.cfl;
+  p.force_factor = s.time.force_factor;
+  p.mass = p.rho0 / lattice_kernel_sum(p.spacing, p.h);
+  p.domain = s.domain;
+  std::int64_t cells = 1;
+  for (int a = 0; a < 3; ++a) {
+    p.grid[a] = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil((s.domain.max[a] - s.domain.min[a]) / p.h)));
+    cells = cells > kMaxGridCells ? cells : cells * p.grid[a];
+  }
+  if (cells >= kMaxGridCells)
+    fail_input("{}: domain: {} x {} x {} grid cells of {} m (the smoothing length) are too many, at most {}; shrink "
+               "the domain",
+               s.path, p.grid[0], p.grid[1], p.grid[2], p.h, kMaxGridCells);
+  const double nu = std::max(p.mu, p.mu_b) / p.rho0;
+  p.dt_viscous = nu > 0 ? s.time.viscous_factor * p.h * p.h / nu : std::numeric_limits<double>::infinity();
+
+  // Fluid blocks on the lattice min + (i + 1/2) spacing.
+  for (const scene::Block& b : s.blocks) {
+    const Vec3d extent = b.max - b.min;
+    const std::int64_t nx = lattice_count(extent.x(), p.spacing), ny = lattice_count(extent.y(), p.spacing),
+                       nz = lattice_count(extent.z(), p.spacing);
+    for (std::int64_t k = 0; k < nz; ++k)
+      for (std::int64_t j = 0; j < ny; ++j)
+        for (std::int64_t i = 0; i < nx; ++i) {
+          const Vec3d q = b.min + p.spacing * Vec3d(static_cast<double>(i) + 0.5, static_cast<double>(j) + 0.5,
+                                                    static_cast<double>(k) + 0.5);
+          out.fluid.push(q, b.velocity);
+        }
+  }
+
+  // Emitters: one layer of lattice points, and how many particles they inject.
+  for (std::size_t i = 0; i < s.emitters.size(); ++i) {
+    const scene::Emitter& e = s.emitters[i];
+    EmitterLattice lattice;
+    lattice.points = emitter_points(e, p.spacing);
+    if (lattice.points.empty())
+      fail_input("{}: fluid.emitter[{}]: holds no particle at spacing {}", s.path, i, p.spacing);
+    lattice.normal = e.normal;
+    lattice.speed = e.speed;
+    lattice.start = e.start;
+    lattice.stop = std::min(e.stop, end_time);
+    out.emitter_particles += lattice.layers_by(end_time, p.spacing) * static_cast<std::int64_t>(lattice.points.size());
+    out.emitters.push_back(std::move(lattice));
+  }
+
+  // MFP: the scene's, or what the blocks and emitters need.
+  const auto block_particles = static_cast<std::int64_t>(out.fluid.size());
+  if (f.max_particles > 0) {
+    p.max_particles = f.max_particles;
+    if (p.max_particles < block_particles)
+      fail_input("{}: fluid.max_particles: {} is fewer than the {} particles of the fluid blocks", s.path,
+                 p.max_particles, block_particles);
+  } else {
+    p.max_particles = std::max<std::int64_t>(1, block_particles + out.emitter_particles);
+  }
+  if (p.max_particles > std::int64_t{1'000'000'000})
+    fail_input("{}: fluid: the blocks and emitters need {} particles, more than the solver's limit of 10^9 (set "
+               "fluid.max_particles)",
+               s.path, p.max_particles);
+
+  // The largest speed the scene gives the fluid: its initial and emitter speeds plus
+  // a fall through the domain from the highest fluid source (energy conservation).
+  double v_init = 0;
+  for (const scene::Block& b : s.blocks) v_init = std::max(v_init, b.velocity.norm());
+  for (const scene::Emitter& e : s.emitters) v_init = std::max(v_init, e.speed);
+  double fall = 0;
+  const double g = p.gravity.norm();
+  if (g > 0) {
+    const Vec3d down = p.gravity / g;
+    double lowest = -std::numeric_limits<double>::infinity();
+    for (int c = 0; c < 8; ++c) {
+      const Vec3d corner((c & 1) ? s.domain.max.x() : s.domain.min.x(), (c & 2) ? s.domain.max.y() : s.domain.min.y(),
+                         (c & 4) ? s.domain.max.z() : s.domain.min.z());
+      lowest = std::max(lowest, down.dot(corner));
+    }
+    double highest = std::numeric_limits<double>::infinity();
+    for (const scene::Block& b : s.blocks)
+      for (int c = 0; c < 8; ++c) {
+        const Vec3d corner((c & 1) ? b.max.x() : b.min.x(), (c & 2) ? b.max.y() : b.min.y(),
+                           (c & 4) ? b.max.z() : b.min.z());
+        highest = std::min(highest, down.dot(corner));
+      }
+    for (const scene::Emitter& e : s.emitters) highest = std::min(highest, down.dot(e.center));
+    fall = std::max(0.0, lowest - highest);
+  }
+  p.scene_speed = std::sqrt(v_init * v_init + 2 * g * fall);
+  if (f.k > 0) {
+    p.k = f.k;
+    p.c0 = std::sqrt(p.k * p.gamma / p.rho0);
+  } else if (f.c0 > 0) {
+    p.c0 = f.c0;
+    p.k = p.rho0 * p.c0 * p.c0 / p.gamma;
+  } else {
+    if (!(p.scene_speed > 0))
+      fail_input("{}: fluid.c0: cannot be derived, the fluid neither moves nor falls in this scene; give fluid.c0 or "
+                 "fluid.k",
+                 s.path);
+    p.c0 = kSoundSpeedFactor * p.scene_speed;
+    p.k = p.rho0 * p.c0 * p.c0 / p.gamma;
+  }
+  p.speed_limit = std::max(kGuardSpeedFactor * p.scene_speed, p.c0);
+
+  // Solids: boundary particles in the world, keeping those within h of the domain.
+  Aabb reach = s.domain;
+  reach.min -= Vec3d::Constant(p.h);
+  reach.max += Vec3d::Constant(p.h);
+  BoundarySet& bset = out.boundary;
+  for (std::size_t i = 0; i < s.solids.size(); ++i) {
+    const scene::Solid& solid = s.solids[i];
+    SampledSolid sampled;
+    try {
+      sampled = read_particles(solid.particles);
+    } catch (const InputError& e) {
+      fail_input("{}: solid[{}].particles: {}", s.path, i, e.what());
+    }
+    const double effective = sampled.grid.spacing * solid.scale;
+    if (effective > kMaxSolidSpacingRatio * p.spacing * (1 + kLatticeSlack))
+      fail_input("{}: solid[{}].particles: sampled at spacing {} (x scale {} = {}), coarser than {} x the scene's "
+                 "spacing {}; fluid would leak through (sample it with bw-sample --spacing {})",
+                 s.path, i, sampled.grid.spacing, solid.scale, effective, kMaxSolidSpacingRatio, p.spacing,
+                 p.spacing / solid.scale);
+    bset.solid_spacing.push_back(effective);
+    const Eigen::Quaterniond q = solid.rotation();
+    std::size_t kept = 0;
+    for (const Vec3d& local : sampled.surface_positions()) {
+      const Vec3d world = q * (solid.scale * local) + solid.translation;
+      if ((world.array() < reach.min.array()).any() || (world.array() > reach.max.array()).any()) {
+        ++bset.dropped;
+        continue;
+      }
+      bset.particles.push(world, Vec3d::Zero());
+      bset.solid.push_back(static_cast<std::uint32_t>(i));
+      ++kept;
+    }
+    bset.per_solid.push_back(kept);
+  }
+  return out;
+}
+
+}  // namespace bw::sim

@@ -1,0 +1,84 @@
+// What the solver starts from, prepared on the host from a scene: the derived
+// physical parameters (particle mass, stiffness, time-step limits), the fluid
+// particles of the blocks, the emitters' lattices and the boundary particles of the
+// solids. Everything here that depends on the input is checked, so that a bad scene
+// fails (InputError naming the key) before a device is touched or a file written.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/geometry.h"
+#include "scene/scene.h"
+
+namespace bw::sim {
+
+// Sum of W_poly6(|x_j|, h) over a simple cubic lattice of the given spacing around a
+// particle at a lattice point, the particle itself included (computed in double).
+double lattice_kernel_sum(double spacing, double h);
+
+struct Parameters {
+  double spacing = 0;
+  double h = 0;                 // support radius
+  double mass = 0;              // rho0 / lattice_kernel_sum: a full lattice has rho0
+  double rho0 = 0;
+  double k = 0;                 // Tait stiffness (Pa)
+  double c0 = 0;                // speed of sound (m/s): k = rho0 c0^2 / gamma
+  double gamma = 7;
+  double mu = 0, mu_b = 0, gamma1 = 1, gamma2 = 1;
+  Vec3d gravity = Vec3d::Zero();
+  double end_time = 0;          // s
+  double frame_rate = 0;
+  double dt_min = 0, dt_max = 0, cfl = 0, force_factor = 0;
+  double dt_viscous = 0;        // viscous limit (s), infinity without viscosity
+  double scene_speed = 0;       // largest speed the scene can give the fluid (m/s)
+  double speed_limit = 0;       // the guard stops the run above this speed (m/s)
+  std::int64_t max_particles = 0;  // MFP
+  Aabb domain;                  // particles leaving it are removed
+  std::array<std::int64_t, 3> grid{0, 0, 0};  // cells of edge h covering the domain
+};
+
+// Particles in structure-of-arrays form (float, what the device computes in).
+struct ParticleArrays {
+  std::vector<float> x, y, z, vx, vy, vz;
+  std::size_t size() const { return x.size(); }
+  void push(const Vec3d& p, const Vec3d& v);
+};
+
+// The lattice of one emitter and its schedule.
+struct EmitterLattice {
+  std::vector<Vec3d> points;    // one layer, on the emitter's plane
+  Vec3d normal = Vec3d::UnitZ();
+  double speed = 0, start = 0, stop = 0;  // stop clipped to the end of the run
+  // Layers emitted by time t: one each time the fluid has moved one spacing.
+  std::int64_t layers_by(double t, double spacing) const;
+  // Distance the fluid has moved out of the emitter by time t.
+  double distance_by(double t) const;
+};
+
+struct BoundarySet {
+  ParticleArrays particles;     // world positions, zero velocities
+  std::vector<std::uint32_t> solid;  // index of the scene solid of each particle
+  std::vector<std::size_t> per_solid;  // kept particles per solid
+  std::size_t dropped = 0;      // farther than h outside the domain: never touch fluid
+  std::vector<double> solid_spacing;   // effective sampling spacing (file spacing x scale)
+};
+
+struct Setup {
+  Parameters params;
+  ParticleArrays fluid;         // the blocks' particles at t = 0
+  std::vector<EmitterLattice> emitters;
+  BoundarySet boundary;
+  std::int64_t emitter_particles = 0;  // what the emitters inject over the run (before MFP)
+};
+
+// Derives the parameters and builds every initial particle. `end_time` is the run's
+// end (the scene's, or the one given on the command line). Throws InputError.
+Setup prepare(const scene::Scene& scene, double end_time);
+
+// The points of one emitter layer, spaced `spacing` apart on its disc or rectangle.
+std::vector<Vec3d> emitter_points(const scene::Emitter& emitter, double spacing);
+
+}  // namespace bw::sim

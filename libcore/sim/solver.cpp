@@ -1,0 +1,622 @@
+#include "sim/solver.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "common/text.h"
+#include "compute/kernels.h"
+#include "compute/radix_sort.h"
+#include "sph_common.h"
+
+namespace bw::sim {
+namespace {
+
+using compute::Buffer;
+using compute::Kernel;
+
+// Elements past the end of every array the neighbour loops read: they load up to
+// 16 (float16, the widest BW_VW) candidates at once.
+constexpr std::size_t kPad = 16;
+// Particles per block of the reduction kernels: long enough for a serial loop to pay,
+// short enough that float partial sums stay accurate.
+constexpr std::uint32_t kReduceChunk = 512;
+// Blocks per compute unit for the reductions.
+constexpr std::uint32_t kReduceBlocksPerUnit = 64;
+// Largest grid (cells): the cell index is a 32-bit key and start[] has one entry each.
+constexpr std::uint64_t kMaxCells = std::uint64_t{1} << 30;
+// A step shorter than this fraction of the proposed dt before a frame time would be
+// a sliver: the last two steps share the remaining time instead.
+constexpr double kSplitBeforeFrame = 2.0;
+
+std::uint32_t u32(std::int64_t v) { return static_cast<std::uint32_t>(v); }
+
+}  // namespace
+
+struct Solver::Impl {
+  compute::Context& ctx;
+  Parameters params;
+  SimParams P{};
+  std::uint32_t ncells = 0;
+  std::uint32_t capacity = 0;
+
+  compute::Program grid_program, fluid_program;
+  Kernel fluid_keys, boundary_keys, cell_starts, reorder, gather_float, gather_uint, neighbour_lists;
+  Kernel psi, density, forces, integrate, relax, step_reduce, frame_reduce, emit;
+  std::unique_ptr<compute::RadixSort> sort;
+
+  // fluid
+  std::array<Buffer, 2> x, y, z, vx, vy, vz, id;
+  int front = 0;
+  Buffer keys, values, keys_tmp, values_tmp;
+  Buffer rho, pres, pterm, vol, ax, ay, az, start;
+  // boundary
+  Buffer bx, by, bz, bpsi, bvx, bvy, bvz, bsolid, bstart;
+  std::uint32_t nb = 0;
+  ParticleArrays boundary_host;
+  ParticleArrays initial;       // the blocks' particles by id (velocities for relax())
+  // reductions
+  Buffer step_out, frame_out;
+  // emitters
+  std::vector<EmitterLattice> emitters;
+  std::vector<std::uint32_t> emitter_first_point;
+  std::vector<std::int64_t> emitter_layers;
+  Buffer ex, ey, ez;
+  bool capped = false;
+
+  // state
+  double t = 0;
+  std::int64_t steps = 0;
+  std::uint32_t n = 0;          // particles in the arrays (live, plus any to be removed)
+  std::int64_t removed = 0;
+  std::uint32_t next_id = 0;
+  bool grid_valid = false;
+
+  explicit Impl(compute::Context& c) : ctx(c) {}
+
+  int back() const { return 1 - front; }
+
+  std::uint32_t reduce_blocks(std::uint32_t count, std::uint32_t& chunk) const {
+    const std::uint32_t units = static_cast<std::uint32_t>(std::max(1, ctx.device().compute_units));
+    std::uint32_t blocks = std::max<std::uint32_t>(1, (count + kReduceChunk - 1) / kReduceChunk);
+    blocks = std::min(blocks, units * kReduceBlocksPerUnit);
+    chunk = std::max<std::uint32_t>(1, (count + blocks - 1) / blocks);
+    return (count + chunk - 1) / chunk;
+  }
+
+  Buffer floats(std::size_t count, const std::string& name) { return ctx.buffer((count + kPad) * sizeof(float), name); }
+  Buffer uints(std::size_t count, const std::string& name) {
+    return ctx.buffer((count + kPad) * sizeof(std::uint32_t), name);
+  }
+
+  // Sorts the fluid by cell, finds the cell starts and computes density and pressure
+  // for the current positions (once per state).
+  void ensure_grid() {
+    if (grid_valid) return;
+    const int f = front, b = back();
+    if (n > 0) {
+      fluid_keys.args(P, n, x[f], y[f], z[f], keys, values);
+      ctx.launch(fluid_keys, n);
+      sort->sort(keys, values, keys_tmp, values_tmp, n, ncells);
+      reorder.args(n, values, x[f], y[f], z[f], vx[f], vy[f], vz[f], id[f], x[b], y[b], z[b], vx[b], vy[b], vz[b], id[b]);
+      ctx.launch(reorder, n);
+      front = b;
+    }
+    cell_starts.args(n, ncells, keys, start);
+    ctx.launch(cell_starts, std::size_t(n) + 1);
+    density.args(P, start, x[front], y[front], z[front], bstart, bx, by, bz, bpsi, rho, pres, pterm, vol);
+    ctx.launch(density, n);
+    grid_valid = true;
+  }
+
+  std::uint32_t read_live() {
+    std::uint32_t live = 0;
+    ctx.read(start, &live, sizeof(live), std::size_t(ncells) * sizeof(std::uint32_t));
+    return live;
+  }
+
+  // After a sort: drop the particles that left the domain from the count.
+  void settle_count() {
+    const std::uint32_t live = read_live();
+    removed += n - live;
+    n = live;
+  }
+
+  float read_float(const Buffer& buffer, std::uint32_t i) {
+    float v = 0;
+    ctx.read(buffer, &v, sizeof(v), std::size_t(i) * sizeof(float));
+    return v;
+  }
+
+  std::string describe_particle(std::uint32_t i) {
+    const int f = front;
+    std::uint32_t pid = 0;
+    ctx.read(id[f], &pid, sizeof(pid), std::size_t(i) * sizeof(std::uint32_t));
+    const float px = read_float(x[f], i), py = read_float(y[f], i), pz = read_float(z[f], i);
+    const float ux = read_float(vx[f], i), uy = read_float(vy[f], i), uz = read_float(vz[f], i);
+    return fmt::format("particle {} at ({:.4g}, {:.4g}, {:.4g}) m with velocity ({:.4g}, {:.4g}, {:.4g}) m/s", pid, px,
+                       py, pz, ux, uy, uz);
+  }
+
+  [[noreturn]] void blow_up(const std::string& what) const {
+    fail_run("step {} (t = {:.6f} s): {}; the fluid blew up (lower time.dt_max or time.cfl, or raise fluid.mu)",
+             steps + 1, t, what);
+  }
+
+  std::int64_t emit_after_step() {
+    std::int64_t emitted = 0;
+    for (std::size_t e = 0; e < emitters.size(); ++e) {
+      const EmitterLattice& em = emitters[e];
+      const std::int64_t target = em.layers_by(t, params.spacing);
+      const double travelled = em.distance_by(t);
+      const std::uint32_t per_layer = static_cast<std::uint32_t>(em.points.size());
+      for (std::int64_t layer = emitter_layers[e]; layer < target; ++layer) {
+        const std::int64_t room = std::int64_t(capacity) - std::int64_t(n);
+        const std::uint32_t count = static_cast<std::uint32_t>(std::clamp<std::int64_t>(room, 0, per_layer));
+        if (count < per_layer) capped = true;
+        if (count > 0) {
+          // Layer k crossed the emitter when the fluid had moved (k + 1) spacings.
+          const double offset = travelled - static_cast<double>(layer + 1) * params.spacing;
+          const Vec3d o = em.normal * offset;
+          const Vec3d v = em.normal * em.speed;
+          const int f = front;
+          emit.args(count, n, next_id, emitter_first_point[e], ex, ey, ez, static_cast<float>(o.x()),
+                    static_cast<float>(o.y()), static_cast<float>(o.z()), static_cast<float>(v.x()),
+                    static_cast<float>(v.y()), static_cast<float>(v.z()), x[f], y[f], z[f], vx[f], vy[f], vz[f], id[f]);
+          ctx.launch(emit, count);
+          n += count;
+          next_id += count;
+          emitted += count;
+        }
+      }
+      emitter_layers[e] = target;
+    }
+    if (emitted) grid_valid = false;
+    return emitted;
+  }
+};
+
+Solver::Solver(const Setup& setup, compute::Context& context)
+    : impl_(std::make_unique<Impl>(context)) {
+  Impl& s = *impl_;
+  s.params = setup.params;
+  const Parameters& p = s.params;
+
+  // Grid over the domain, cells of edge h (sized and checked by prepare()).
+  const Aabb& domain = p.domain;
+  const std::array<std::uint64_t, 3> dims{std::uint64_t(p.grid[0]), std::uint64_t(p.grid[1]), std::uint64_t(p.grid[2])};
+  const std::uint64_t cells = dims[0] * dims[1] * dims[2];
+  if (cells >= kMaxCells) fail_run("grid of {} cells is too large", cells);
+  s.ncells = static_cast<std::uint32_t>(cells);
+  s.capacity = u32(p.max_particles);
+
+  SimParams& P = s.P;
+  const double pi = std::numbers::pi;
+  P.h = static_cast<float>(p.h);
+  P.h2 = static_cast<float>(p.h * p.h);
+  P.poly6 = static_cast<float>(315.0 / (64.0 * pi * std::pow(p.h, 9)));
+  P.visc = static_cast<float>(45.0 / (pi * std::pow(p.h, 6)));
+  P.mass = static_cast<float>(p.mass);
+  P.rho0 = static_cast<float>(p.rho0);
+  P.stiffness = static_cast<float>(p.k);
+  P.gamma = static_cast<float>(p.gamma);
+  P.mu = static_cast<float>(p.mu);
+  P.mu_b = static_cast<float>(p.mu_b);
+  P.gamma1 = static_cast<float>(p.gamma1);
+  P.gamma2 = static_cast<float>(p.gamma2);
+  P.gx = static_cast<float>(p.gravity.x());
+  P.gy = static_cast<float>(p.gravity.y());
+  P.gz = static_cast<float>(p.gravity.z());
+  P.ox = static_cast<float>(domain.min.x());
+  P.oy = static_cast<float>(domain.min.y());
+  P.oz = static_cast<float>(domain.min.z());
+  P.cell = static_cast<float>(p.h);
+  P.inv_cell = static_cast<float>(1.0 / p.h);
+  P.max_x = static_cast<float>(domain.max.x());
+  P.max_y = static_cast<float>(domain.max.y());
+  P.max_z = static_cast<float>(domain.max.z());
+  P.nx = static_cast<int>(dims[0]);
+  P.ny = static_cast<int>(dims[1]);
+  P.nz = static_cast<int>(dims[2]);
+  P.ncells = static_cast<int>(s.ncells);
+
+  // Refuse what cannot fit before allocating anything.
+  const std::uint64_t per_particle = 25 * sizeof(float);
+  const std::uint64_t nb_all = setup.boundary.particles.size();
+  const std::uint64_t estimate = (s.capacity + kPad) * per_particle + 2 * (cells + 1) * sizeof(std::uint32_t) +
+                                 (nb_all + kPad) * 12 * sizeof(float);
+  const compute::DeviceInfo& dev = context.device();
+  if (dev.global_memory && estimate > dev.global_memory)
+    fail_input("the scene needs about {} of device memory ({} fluid particles, {} boundary particles, {} grid cells); "
+               "{} has {}",
+               human_bytes(estimate), s.capacity, nb_all, cells, dev.label(), human_bytes(dev.global_memory));
+
+  const std::string options = compute::kernel_build_options(dev);
+  s.grid_program = context.build("grid.cl", compute::embedded_kernels(), options);
+  s.fluid_program = context.build("fluid.cl", compute::embedded_kernels(), options);
+  s.fluid_keys = s.grid_program.kernel("fluid_keys");
+  s.boundary_keys = s.grid_program.kernel("boundary_keys");
+  s.cell_starts = s.grid_program.kernel("cell_starts");
+  s.reorder = s.grid_program.kernel("fluid_reorder");
+  s.gather_float = s.grid_program.kernel("gather_float");
+  s.gather_uint = s.grid_program.kernel("gather_uint");
+  s.neighbour_lists = s.grid_program.kernel("neighbour_lists");
+  s.psi = s.fluid_program.kernel("boundary_psi");
+  s.density = s.fluid_program.kernel("fluid_density");
+  s.forces = s.fluid_program.kernel("fluid_forces");
+  s.integrate = s.fluid_program.kernel("fluid_integrate");
+  s.relax = s.fluid_program.kernel("fluid_relax");
+  s.step_reduce = s.fluid_program.kernel("fluid_step_reduce");
+  s.frame_reduce = s.fluid_program.kernel("fluid_frame_reduce");
+  s.emit = s.fluid_program.kernel("fluid_emit");
+  s.sort = std::make_unique<compute::RadixSort>(context);
+
+  const std::size_t cap = s.capacity;
+  const char* names[2] = {"a", "b"};
+  for (int k = 0; k < 2; ++k) {
+    s.x[k] = s.floats(cap, fmt::format("fluid x ({})", names[k]));
+    s.y[k] = s.floats(cap, fmt::format("fluid y ({})", names[k]));
+    s.z[k] = s.floats(cap, fmt::format("fluid z ({})", names[k]));
+    s.vx[k] = s.floats(cap, fmt::format("fluid vx ({})", names[k]));
+    s.vy[k] = s.floats(cap, fmt::format("fluid vy ({})", names[k]));
+    s.vz[k] = s.floats(cap, fmt::format("fluid vz ({})", names[k]));
+    s.id[k] = s.uints(cap, fmt::format("fluid id ({})", names[k]));
+  }
+  s.keys = s.uints(cap, "fluid keys");
+  s.values = s.uints(cap, "fluid order");
+  s.keys_tmp = s.uints(cap, "fluid keys (sort scratch)");
+  s.values_tmp = s.uints(cap, "fluid order (sort scratch)");
+  s.rho = s.floats(cap, "fluid rho");
+  s.pres = s.floats(cap, "fluid p");
+  s.pterm = s.floats(cap, "fluid p/rho^2");
+  s.vol = s.floats(cap, "fluid 1/rho");
+  s.ax = s.floats(cap, "fluid ax");
+  s.ay = s.floats(cap, "fluid ay");
+  s.az = s.floats(cap, "fluid az");
+  s.start = context.buffer((std::size_t(s.ncells) + 1) * sizeof(std::uint32_t), "fluid cell starts");
+  s.bstart = context.buffer((std::size_t(s.ncells) + 1) * sizeof(std::uint32_t), "boundary cell starts");
+  std::uint32_t chunk = 0;
+  const std::uint32_t max_blocks = s.reduce_blocks(s.capacity, chunk);
+  s.step_out = context.buffer(std::size_t(max_blocks + 1) * sizeof(StepReduce), "step reduction");
+  s.frame_out = context.buffer(std::size_t(max_blocks + 1) * sizeof(FrameReduce), "frame reduction");
+
+  // Initial fluid.
+  const ParticleArrays& fluid = setup.fluid;
+  s.n = static_cast<std::uint32_t>(fluid.size());
+  context.write_vector(s.x[0], fluid.x);
+  context.write_vector(s.y[0], fluid.y);
+  context.write_vector(s.z[0], fluid.z);
+  context.write_vector(s.vx[0], fluid.vx);
+  context.write_vector(s.vy[0], fluid.vy);
+  context.write_vector(s.vz[0], fluid.vz);
+  std::vector<std::uint32_t> ids(fluid.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<std::uint32_t>(i);
+  context.write_vector(s.id[0], ids);
+  s.next_id = s.n;
+  s.initial = setup.fluid;
+
+  // Boundary: upload, sort by cell once (static), then Psi_b.
+  const BoundarySet& bset = setup.boundary;
+  s.boundary_host = bset.particles;
+  s.nb = static_cast<std::uint32_t>(bset.particles.size());
+  const std::size_t nb = s.nb;
+  s.bx = s.floats(nb, "boundary x");
+  s.by = s.floats(nb, "boundary y");
+  s.bz = s.floats(nb, "boundary z");
+  s.bpsi = s.floats(nb, "boundary psi");
+  s.bvx = s.floats(nb, "boundary vx");
+  s.bvy = s.floats(nb, "boundary vy");
+  s.bvz = s.floats(nb, "boundary vz");
+  s.bsolid = s.uints(nb, "boundary solid");
+  {
+    Buffer ux = s.floats(nb, "boundary x (unsorted)"), uy = s.floats(nb, "boundary y (unsorted)"),
+           uz = s.floats(nb, "boundary z (unsorted)"), us = s.uints(nb, "boundary solid (unsorted)");
+    context.write_vector(ux, bset.particles.x);
+    context.write_vector(uy, bset.particles.y);
+    context.write_vector(uz, bset.particles.z);
+    context.write_vector(us, bset.solid);
+    Buffer bkeys = s.uints(nb, "boundary keys"), bvalues = s.uints(nb, "boundary order");
+    Buffer bkeys_tmp = s.uints(nb, "boundary keys (sort scratch)"), bvalues_tmp = s.uints(nb, "boundary order (sort scratch)");
+    if (s.nb > 0) {
+      s.boundary_keys.args(P, s.nb, ux, uy, uz, bkeys, bvalues);
+      context.launch(s.boundary_keys, s.nb);
+      s.sort->sort(bkeys, bvalues, bkeys_tmp, bvalues_tmp, s.nb, s.ncells);
+      s.gather_float.args(s.nb, bvalues, ux, s.bx);
+      context.launch(s.gather_float, s.nb);
+      s.gather_float.args(s.nb, bvalues, uy, s.by);
+      context.launch(s.gather_float, s.nb);
+      s.gather_float.args(s.nb, bvalues, uz, s.bz);
+      context.launch(s.gather_float, s.nb);
+      s.gather_uint.args(s.nb, bvalues, us, s.bsolid);
+      context.launch(s.gather_uint, s.nb);
+    }
+    s.cell_starts.args(s.nb, s.ncells, bkeys, s.bstart);
+    context.launch(s.cell_starts, nb + 1);
+    s.psi.args(P, s.nb, s.bstart, s.bx, s.by, s.bz, s.bsolid, s.bpsi);
+    context.launch(s.psi, s.nb);
+    context.finish();
+  }
+
+  // Emitters: every layer's points in one set of arrays.
+  s.emitters = setup.emitters;
+  std::vector<float> px, py, pz;
+  for (const EmitterLattice& e : s.emitters) {
+    s.emitter_first_point.push_back(static_cast<std::uint32_t>(px.size()));
+    s.emitter_layers.push_back(0);
+    for (const Vec3d& q : e.points) {
+      px.push_back(static_cast<float>(q.x()));
+      py.push_back(static_cast<float>(q.y()));
+      pz.push_back(static_cast<float>(q.z()));
+    }
+  }
+  s.ex = s.floats(px.size(), "emitter points x");
+  s.ey = s.floats(py.size(), "emitter points y");
+  s.ez = s.floats(pz.size(), "emitter points z");
+  context.write_vector(s.ex, px);
+  context.write_vector(s.ey, py);
+  context.write_vector(s.ez, pz);
+}
+
+Solver::~Solver() = default;
+
+StepInfo Solver::step(double t_target) {
+  Impl& s = *impl_;
+  const Parameters& p = s.params;
+  if (!(t_target > s.t)) fail_run("step to t = {} requested at t = {}", t_target, s.t);
+  s.ensure_grid();
+  const int f = s.front;
+  s.forces.args(s.P, s.start, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.rho, s.pterm, s.vol, s.bstart, s.bx,
+                s.by, s.bz, s.bpsi, s.bvx, s.bvy, s.bvz, s.ax, s.ay, s.az);
+  s.ctx.launch(s.forces, s.n);
+
+  std::uint32_t chunk = 0;
+  const std::uint32_t blocks = s.reduce_blocks(s.n, chunk);
+  s.step_reduce.args(s.n, chunk, blocks, s.ncells, s.start, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.ax,
+                     s.ay, s.az, s.rho, s.step_out);
+  s.ctx.launch(s.step_reduce, blocks);
+  const std::vector<StepReduce> parts = s.ctx.read_vector<StepReduce>(s.step_out, blocks);
+  double max_v2 = 0, max_a2 = 0;
+  int fastest = -1, bad = -1;
+  for (const StepReduce& r : parts) {
+    if (r.bad >= 0 && bad < 0) bad = r.bad;
+    if (r.fastest >= 0 && (fastest < 0 || r.max_v2 > max_v2)) {
+      max_v2 = r.max_v2;
+      fastest = r.fastest;
+    }
+    max_a2 = std::max(max_a2, double(r.max_a2));
+  }
+  // Guard: stop before a broken state is integrated or written.
+  if (bad >= 0) s.blow_up(s.describe_particle(static_cast<std::uint32_t>(bad)) + " has a non-finite value");
+  const double vmax = std::sqrt(max_v2), amax = std::sqrt(max_a2);
+  if (vmax > p.speed_limit)
+    s.blow_up(fmt::format("{} moves at {:.4g} m/s, far faster than this scene can produce (limit {:.4g} m/s)",
+                          s.describe_particle(static_cast<std::uint32_t>(fastest)), vmax, p.speed_limit));
+  s.settle_count();
+
+  // Adaptive step: CFL, force and viscous limits, clamped, landing on t_target.
+  double dt = p.cfl * p.h / (p.c0 + vmax);
+  if (amax > 0) dt = std::min(dt, p.force_factor * std::sqrt(p.h / amax));
+  dt = std::min(dt, p.dt_viscous);
+  dt = std::clamp(dt, p.dt_min, p.dt_max);
+  const double remaining = t_target - s.t;
+  bool lands = false;
+  if (remaining <= dt) {
+    dt = remaining;
+    lands = true;
+  } else if (remaining < kSplitBeforeFrame * dt) {
+    dt = 0.5 * remaining;
+  }
+
+  s.integrate.args(s.n, static_cast<float>(dt), s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.ax, s.ay, s.az);
+  s.ctx.launch(s.integrate, s.n);
+  s.grid_valid = false;
+  s.t = lands ? t_target : s.t + dt;
+  ++s.steps;
+
+  StepInfo info;
+  info.dt = dt;
+  info.max_speed = vmax;
+  info.max_acceleration = amax;
+  info.emitted = s.emit_after_step();
+  return info;
+}
+
+RelaxInfo Solver::relax(int max_steps, double tolerance) {
+  Impl& s = *impl_;
+  RelaxInfo info;
+  if (s.n == 0 || s.nb == 0 || s.steps > 0) return info;
+  // Damping per step: kills the relaxation's sound waves within a few dozen steps.
+  constexpr float kDamping = 0.9f;
+  const Parameters& p = s.params;
+  SimParams still = s.P;
+  still.gx = still.gy = still.gz = 0;
+  const std::vector<float> zeros(s.n, 0.0f);
+  for (Buffer* v : {&s.vx[s.front], &s.vy[s.front], &s.vz[s.front]}) s.ctx.write_vector(*v, zeros);
+  info.density_error_before = stats().density_error_max;
+  info.density_error_after = info.density_error_before;
+  const double dt = p.cfl * p.h / p.c0;
+  while (info.steps < max_steps && info.density_error_after > tolerance) {
+    s.ensure_grid();
+    const int f = s.front;
+    s.forces.args(still, s.start, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.rho, s.pterm, s.vol, s.bstart,
+                  s.bx, s.by, s.bz, s.bpsi, s.bvx, s.bvy, s.bvz, s.ax, s.ay, s.az);
+    s.ctx.launch(s.forces, s.n);
+    s.relax.args(s.n, static_cast<float>(dt), kDamping, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.ax, s.ay,
+                 s.az);
+    s.ctx.launch(s.relax, s.n);
+    s.grid_valid = false;
+    ++info.steps;
+    info.density_error_after = stats().density_error_max;
+  }
+  // Back to the initial velocities, by particle id; measure how far particles moved.
+  s.ensure_grid();
+  s.settle_count();
+  const int f = s.front;
+  const auto ids = s.ctx.read_vector<std::uint32_t>(s.id[f], s.n);
+  const auto px = s.ctx.read_vector<float>(s.x[f], s.n), py = s.ctx.read_vector<float>(s.y[f], s.n),
+             pz = s.ctx.read_vector<float>(s.z[f], s.n);
+  std::vector<float> ux(s.n), uy(s.n), uz(s.n);
+  for (std::size_t i = 0; i < s.n; ++i) {
+    const std::uint32_t k = ids[i];
+    ux[i] = s.initial.vx[k];
+    uy[i] = s.initial.vy[k];
+    uz[i] = s.initial.vz[k];
+    const double dx = px[i] - s.initial.x[k], dy = py[i] - s.initial.y[k], dz = pz[i] - s.initial.z[k];
+    info.largest_move = std::max(info.largest_move, std::sqrt(dx * dx + dy * dy + dz * dz));
+  }
+  s.ctx.write_vector(s.vx[f], ux);
+  s.ctx.write_vector(s.vy[f], uy);
+  s.ctx.write_vector(s.vz[f], uz);
+  return info;
+}
+
+double Solver::time() const { return impl_->t; }
+std::int64_t Solver::steps() const { return impl_->steps; }
+std::int64_t Solver::boundary_count() const { return impl_->nb; }
+bool Solver::emitters_capped() const { return impl_->capped; }
+const Parameters& Solver::parameters() const { return impl_->params; }
+compute::Context& Solver::context() { return impl_->ctx; }
+std::int64_t Solver::capacity() const { return impl_->capacity; }
+
+std::uint64_t Solver::device_bytes() const {
+  const Impl& s = *impl_;
+  std::uint64_t total = 0;
+  for (int k = 0; k < 2; ++k)
+    total += s.x[k].bytes() + s.y[k].bytes() + s.z[k].bytes() + s.vx[k].bytes() + s.vy[k].bytes() + s.vz[k].bytes() +
+             s.id[k].bytes();
+  for (const Buffer* b : {&s.keys, &s.values, &s.keys_tmp, &s.values_tmp, &s.rho, &s.pres, &s.pterm, &s.vol, &s.ax,
+                          &s.ay, &s.az, &s.start, &s.bx, &s.by, &s.bz, &s.bpsi, &s.bvx, &s.bvy, &s.bvz, &s.bsolid,
+                          &s.bstart, &s.step_out, &s.frame_out, &s.ex, &s.ey, &s.ez})
+    total += b->bytes();
+  return total + s.sort->scratch_bytes();
+}
+
+std::int64_t Solver::fluid_count() {
+  impl_->ensure_grid();
+  impl_->settle_count();
+  return impl_->n;
+}
+
+std::int64_t Solver::removed_count() {
+  fluid_count();
+  return impl_->removed;
+}
+
+FluidStats Solver::stats() {
+  Impl& s = *impl_;
+  s.ensure_grid();
+  s.settle_count();
+  FluidStats out;
+  out.fluid = s.n;
+  if (s.n == 0) return out;
+  std::uint32_t chunk = 0;
+  const std::uint32_t blocks = s.reduce_blocks(s.n, chunk);
+  const int f = s.front;
+  s.frame_reduce.args(s.P, s.n, chunk, blocks, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.rho, s.frame_out);
+  s.ctx.launch(s.frame_reduce, blocks);
+  const std::vector<FrameReduce> parts = s.ctx.read_vector<FrameReduce>(s.frame_out, blocks);
+  double error_sum = 0;
+  for (const FrameReduce& r : parts) {
+    out.kinetic += r.kinetic;
+    out.potential += r.potential;
+    out.elastic += r.elastic;
+    error_sum += r.error_sum;
+    out.density_error_max = std::max(out.density_error_max, double(r.error_max));
+    out.speed_max = std::max(out.speed_max, double(r.speed_max));
+  }
+  out.density_error_mean = error_sum / s.n;
+  return out;
+}
+
+FrameData Solver::frame(const FrameFields& fields, int frame_index) {
+  Impl& s = *impl_;
+  s.ensure_grid();
+  s.settle_count();
+  FrameData d;
+  d.frame = frame_index;
+  d.time = s.t;
+  const int f = s.front;
+  const std::size_t n = s.n;
+  d.x = s.ctx.read_vector<float>(s.x[f], n);
+  d.y = s.ctx.read_vector<float>(s.y[f], n);
+  d.z = s.ctx.read_vector<float>(s.z[f], n);
+  if (fields.velocity) {
+    d.vx = s.ctx.read_vector<float>(s.vx[f], n);
+    d.vy = s.ctx.read_vector<float>(s.vy[f], n);
+    d.vz = s.ctx.read_vector<float>(s.vz[f], n);
+  }
+  if (fields.density) d.rho = s.ctx.read_vector<float>(s.rho, n);
+  if (fields.pressure) d.p = s.ctx.read_vector<float>(s.pres, n);
+  if (fields.id) {
+    const auto ids = s.ctx.read_vector<std::uint32_t>(s.id[f], n);
+    d.id.assign(ids.begin(), ids.end());
+  }
+  if (fields.boundary) {
+    d.bx = s.boundary_host.x;
+    d.by = s.boundary_host.y;
+    d.bz = s.boundary_host.z;
+  }
+  return d;
+}
+
+Solver::Neighbours Solver::neighbour_lists(std::uint32_t max_per_particle) {
+  Impl& s = *impl_;
+  s.ensure_grid();
+  s.settle_count();
+  Neighbours out;
+  const std::size_t n = s.n;
+  Buffer count = s.uints(n, "neighbour counts");
+  Buffer list = s.ctx.buffer(std::max<std::size_t>(1, n * max_per_particle) * sizeof(std::uint32_t), "neighbour lists");
+  const int f = s.front;
+  s.neighbour_lists.args(s.P, s.start, s.x[f], s.y[f], s.z[f], max_per_particle, count, list);
+  s.ctx.launch(s.neighbour_lists, n);
+  const auto counts = s.ctx.read_vector<std::uint32_t>(count, n);
+  const auto flat = s.ctx.read_vector<std::uint32_t>(list, n * max_per_particle);
+  out.x = s.ctx.read_vector<float>(s.x[f], n);
+  out.y = s.ctx.read_vector<float>(s.y[f], n);
+  out.z = s.ctx.read_vector<float>(s.z[f], n);
+  out.lists.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (counts[i] > max_per_particle)
+      fail_run("particle {} has {} neighbours, more than the {} asked for", i, counts[i], max_per_particle);
+    out.lists[i].assign(flat.begin() + static_cast<std::ptrdiff_t>(i * max_per_particle),
+                        flat.begin() + static_cast<std::ptrdiff_t>(i * max_per_particle + counts[i]));
+  }
+  return out;
+}
+
+Solver::Snapshot Solver::snapshot() {
+  Impl& s = *impl_;
+  s.ensure_grid();
+  const int f = s.front;
+  s.forces.args(s.P, s.start, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.rho, s.pterm, s.vol, s.bstart, s.bx,
+                s.by, s.bz, s.bpsi, s.bvx, s.bvy, s.bvz, s.ax, s.ay, s.az);
+  s.ctx.launch(s.forces, s.n);
+  s.settle_count();
+  const std::size_t n = s.n, nb = s.nb;
+  Snapshot out;
+  out.x = s.ctx.read_vector<float>(s.x[f], n);
+  out.y = s.ctx.read_vector<float>(s.y[f], n);
+  out.z = s.ctx.read_vector<float>(s.z[f], n);
+  out.vx = s.ctx.read_vector<float>(s.vx[f], n);
+  out.vy = s.ctx.read_vector<float>(s.vy[f], n);
+  out.vz = s.ctx.read_vector<float>(s.vz[f], n);
+  out.rho = s.ctx.read_vector<float>(s.rho, n);
+  out.p = s.ctx.read_vector<float>(s.pres, n);
+  out.ax = s.ctx.read_vector<float>(s.ax, n);
+  out.ay = s.ctx.read_vector<float>(s.ay, n);
+  out.az = s.ctx.read_vector<float>(s.az, n);
+  out.bx = s.ctx.read_vector<float>(s.bx, nb);
+  out.by = s.ctx.read_vector<float>(s.by, nb);
+  out.bz = s.ctx.read_vector<float>(s.bz, nb);
+  out.bpsi = s.ctx.read_vector<float>(s.bpsi, nb);
+  out.bsolid = s.ctx.read_vector<std::uint32_t>(s.bsolid, nb);
+  return out;
+}
+
+}  // namespace bw::sim

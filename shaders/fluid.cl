@@ -1,0 +1,285 @@
+// The fluid step (method.md 1, 2, 6): density with the boundary term, Tait pressure,
+// forces, symplectic Euler, emitters, and the reductions the host needs for the time
+// step, the guard and the frame statistics.
+//
+// Fluid arrays are one float per particle and component (x, y, z, vx, ...), sorted by
+// grid cell (grid.cl); boundary arrays likewise (bx, by, bz, bpsi = Psi_b, bvx, ...).
+// Each fluid particle gathers from its neighbours: no atomics, no scattered writes,
+// so a step is deterministic. Neighbour loops run BW_VW candidates at a time
+// (sph_vector.h).
+#include "sph_common.h"
+#include "sph_vector.h"
+
+// Pairs closer than this fraction of h^2 contribute no pressure or friction (the
+// particle itself, or two particles on the same spot, which have no direction).
+#define BW_MIN_R2_FRACTION 1e-12f
+
+// Non-finite test on the bits, immune to compiler options that assume finite math.
+static inline bool bw_finite(float v) { return (as_uint(v) & 0x7f800000u) != 0x7f800000u; }
+
+// Akinci's Psi_b = rho0 / sum_k W(x_bk), the sum over the boundary particles k of the
+// same solid (including b): the fluid mass a boundary particle stands for.
+__kernel void boundary_psi(SimParams P, uint nb, __global const uint* bstart, __global const float* bx,
+                           __global const float* by, __global const float* bz, __global const uint* bsolid,
+                           __global float* bpsi) {
+  const uint i = get_global_id(0);
+  if (i >= nb) return;
+  const float xi = bx[i], yi = by[i], zi = bz[i];
+  const uint solid = bsolid[i];
+  const int cx = bw_cell_coord(xi, P.ox, P.inv_cell, P.nx);
+  const int cy = bw_cell_coord(yi, P.oy, P.inv_cell, P.ny);
+  const int cz = bw_cell_coord(zi, P.oz, P.inv_cell, P.nz);
+  const int x0 = max(cx - 1, 0), x1 = min(cx + 1, P.nx - 1);
+  float sum = 0.0f;
+  for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
+    for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
+      const int row = bw_cell_index(0, gy, gz, P.nx, P.ny);
+      const uint s = bstart[row + x0], e = bstart[row + x1 + 1];
+      for (uint j = s; j < e; ++j) {
+        if (bsolid[j] != solid) continue;
+        const float dx = xi - bx[j], dy = yi - by[j], dz = zi - bz[j];
+        sum += bw_poly6(dx * dx + dy * dy + dz * dz, P.h2, P.poly6);
+      }
+    }
+  }
+  bpsi[i] = P.rho0 / sum;
+}
+
+// rho_i = m sum_j W(x_ij) + gamma1 sum_b Psi_b W(x_ib), then the Tait pressure, the
+// per-particle factors the force kernel reads: pterm = p / rho^2, vol = 1 / rho.
+__kernel void fluid_density(SimParams P, __global const uint* start, __global const float* x,
+                            __global const float* y, __global const float* z, __global const uint* bstart,
+                            __global const float* bx, __global const float* by, __global const float* bz,
+                            __global const float* bpsi, __global float* rho, __global float* pres,
+                            __global float* pterm, __global float* vol) {
+  const uint i = get_global_id(0);
+  if (i >= start[P.ncells]) return;
+  const float xi = x[i], yi = y[i], zi = z[i];
+  const int cx = bw_cell_coord(xi, P.ox, P.inv_cell, P.nx);
+  const int cy = bw_cell_coord(yi, P.oy, P.inv_cell, P.ny);
+  const int cz = bw_cell_coord(zi, P.oz, P.inv_cell, P.nz);
+  const int x0 = max(cx - 1, 0), x1 = min(cx + 1, P.nx - 1);
+  const float h2 = P.h2;
+  vfloat wf = 0.0f, wb = 0.0f;
+  for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
+    for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
+      const int row = bw_cell_index(0, gy, gz, P.nx, P.ny);
+      const uint s = start[row + x0], e = start[row + x1 + 1];
+      for (uint j = s; j < e; j += BW_VW) {
+        const vfloat dx = xi - VLOAD(x + j), dy = yi - VLOAD(y + j), dz = zi - VLOAD(z + j);
+        const vfloat r2 = dx * dx + dy * dy + dz * dz;
+        const vfloat d = h2 - r2;
+        wf += select((vfloat)0.0f, d * d * d, (r2 < h2) & VIN_ROW(j, e));
+      }
+      const uint bs = bstart[row + x0], be = bstart[row + x1 + 1];
+      for (uint j = bs; j < be; j += BW_VW) {
+        const vfloat dx = xi - VLOAD(bx + j), dy = yi - VLOAD(by + j), dz = zi - VLOAD(bz + j);
+        const vfloat r2 = dx * dx + dy * dy + dz * dz;
+        const vfloat d = h2 - r2;
+        wb += select((vfloat)0.0f, VLOAD(bpsi + j) * d * d * d, (r2 < h2) & VIN_ROW(j, be));
+      }
+    }
+  }
+  const float r = P.poly6 * (P.mass * VSUM(wf) + P.gamma1 * VSUM(wb));
+  const float p = bw_tait(r, P.rho0, P.stiffness, P.gamma);
+  rho[i] = r;
+  pres[i] = p;
+  pterm[i] = p / (r * r);
+  vol[i] = 1.0f / r;
+}
+
+// Accelerations (method.md 1 and 2.3; gradients of the density kernel W = W_poly6,
+// docs/scene.md "Physics"):
+//   pressure   -m sum_j (p_i/rho_i^2 + p_j/rho_j^2) grad W(x_ij)
+//   viscosity  (mu/rho_i) sum_j m (v_j - v_i)/rho_j lap W_visc(x_ij)
+//   boundary   -gamma2 sum_b Psi_b (p_i/rho_i^2 + p_i/rho0^2) grad W(x_ib)
+//   friction   (mu_b/rho_i) sum_b (Psi_b/rho0) (v_b - v_i) lap W_visc(x_ib)
+//   gravity    g
+// with grad W(x) = -6 poly6 (h^2 - r^2)^2 x and lap W_visc = visc (h - r).
+__kernel void fluid_forces(SimParams P, __global const uint* start, __global const float* x,
+                           __global const float* y, __global const float* z, __global const float* vx,
+                           __global const float* vy, __global const float* vz, __global const float* rho,
+                           __global const float* pterm, __global const float* vol, __global const uint* bstart, __global const float* bx, __global const float* by,
+                           __global const float* bz, __global const float* bpsi, __global const float* bvx,
+                           __global const float* bvy, __global const float* bvz, __global float* ax,
+                           __global float* ay, __global float* az) {
+  const uint i = get_global_id(0);
+  if (i >= start[P.ncells]) return;
+  const float xi = x[i], yi = y[i], zi = z[i];
+  const float vxi = vx[i], vyi = vy[i], vzi = vz[i];
+  const float pti = pterm[i];
+  const float rhoi = rho[i];
+  const int cx = bw_cell_coord(xi, P.ox, P.inv_cell, P.nx);
+  const int cy = bw_cell_coord(yi, P.oy, P.inv_cell, P.ny);
+  const int cz = bw_cell_coord(zi, P.oz, P.inv_cell, P.nz);
+  const int x0 = max(cx - 1, 0), x1 = min(cx + 1, P.nx - 1);
+  const float h = P.h, h2 = P.h2;
+  const float min_r2 = h2 * BW_MIN_R2_FRACTION;
+  vfloat fx = 0.0f, fy = 0.0f, fz = 0.0f;    // sum (Pi + Pj) (h^2 - r^2)^2 x_ij
+  vfloat lx = 0.0f, ly = 0.0f, lz = 0.0f;    // sum (v_j - v_i) (h - r) / rho_j
+  vfloat bfx = 0.0f, bfy = 0.0f, bfz = 0.0f; // sum Psi_b (h^2 - r^2)^2 x_ib
+  vfloat blx = 0.0f, bly = 0.0f, blz = 0.0f; // sum Psi_b (v_b - v_i) (h - r)
+  for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
+    for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
+      const int row = bw_cell_index(0, gy, gz, P.nx, P.ny);
+      const uint s = start[row + x0], e = start[row + x1 + 1];
+      for (uint j = s; j < e; j += BW_VW) {
+        const vfloat dx = xi - VLOAD(x + j), dy = yi - VLOAD(y + j), dz = zi - VLOAD(z + j);
+        const vfloat r2 = dx * dx + dy * dy + dz * dz;
+        const vint ok = (r2 < h2) & (r2 > min_r2) & VIN_ROW(j, e);
+        const vfloat d = h2 - r2;
+        const vfloat c = select((vfloat)0.0f, (pti + VLOAD(pterm + j)) * d * d, ok);
+        const vfloat w = select((vfloat)0.0f, (h - sqrt(r2)) * VLOAD(vol + j), ok);
+        fx += c * dx;
+        fy += c * dy;
+        fz += c * dz;
+        lx += (VLOAD(vx + j) - vxi) * w;
+        ly += (VLOAD(vy + j) - vyi) * w;
+        lz += (VLOAD(vz + j) - vzi) * w;
+      }
+      const uint bs = bstart[row + x0], be = bstart[row + x1 + 1];
+      for (uint j = bs; j < be; j += BW_VW) {
+        const vfloat dx = xi - VLOAD(bx + j), dy = yi - VLOAD(by + j), dz = zi - VLOAD(bz + j);
+        const vfloat r2 = dx * dx + dy * dy + dz * dz;
+        const vint ok = (r2 < h2) & (r2 > min_r2) & VIN_ROW(j, be);
+        const vfloat psi = VLOAD(bpsi + j);
+        const vfloat d = h2 - r2;
+        const vfloat c = select((vfloat)0.0f, psi * d * d, ok);
+        const vfloat w = select((vfloat)0.0f, psi * (h - sqrt(r2)), ok);
+        bfx += c * dx;
+        bfy += c * dy;
+        bfz += c * dz;
+        blx += (VLOAD(bvx + j) - vxi) * w;
+        bly += (VLOAD(bvy + j) - vyi) * w;
+        blz += (VLOAD(bvz + j) - vzi) * w;
+      }
+    }
+  }
+  // -grad W = 6 poly6 (h^2 - r^2)^2 x: the sums above times 6 poly6 point away from
+  // the neighbours, so every pressure-like term below is repulsive.
+  const float g6 = 6.0f * P.poly6;
+  const float kp = P.mass * g6;
+  const float kv = P.mu * P.mass * P.visc / rhoi;
+  const float kbp = g6 * P.gamma2 * (pti + pti * rhoi * rhoi / (P.rho0 * P.rho0));
+  const float kbv = P.mu_b * P.visc / (rhoi * P.rho0);
+  ax[i] = kp * VSUM(fx) + kv * VSUM(lx) + kbp * VSUM(bfx) + kbv * VSUM(blx) + P.gx;
+  ay[i] = kp * VSUM(fy) + kv * VSUM(ly) + kbp * VSUM(bfy) + kbv * VSUM(bly) + P.gy;
+  az[i] = kp * VSUM(fz) + kv * VSUM(lz) + kbp * VSUM(bfz) + kbv * VSUM(blz) + P.gz;
+}
+
+// Symplectic Euler: v += a dt, then x += v dt with the new velocity.
+__kernel void fluid_integrate(uint n, float dt, __global float* x, __global float* y, __global float* z,
+                              __global float* vx, __global float* vy, __global float* vz, __global const float* ax,
+                              __global const float* ay, __global const float* az) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const float ux = vx[i] + ax[i] * dt, uy = vy[i] + ay[i] * dt, uz = vz[i] + az[i] * dt;
+  vx[i] = ux;
+  vy[i] = uy;
+  vz[i] = uz;
+  x[i] += ux * dt;
+  y[i] += uy * dt;
+  z[i] += uz * dt;
+}
+
+// Damped motion without gravity, to relax the initial fluid against the solids:
+// v = (v + a dt) damping, x += v dt.
+__kernel void fluid_relax(uint n, float dt, float damping, __global float* x, __global float* y, __global float* z,
+                          __global float* vx, __global float* vy, __global float* vz, __global const float* ax,
+                          __global const float* ay, __global const float* az) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const float ux = (vx[i] + ax[i] * dt) * damping, uy = (vy[i] + ay[i] * dt) * damping,
+              uz = (vz[i] + az[i] * dt) * damping;
+  vx[i] = ux;
+  vy[i] = uy;
+  vz[i] = uz;
+  x[i] += ux * dt;
+  y[i] += uy * dt;
+  z[i] += uz * dt;
+}
+
+// Per block of `chunk` particles (all n particles of the step, including those that
+// left the domain and sort after start[ncells]): the largest speed and acceleration
+// (for the time step) and the fastest particle and the first with a non-finite value
+// (for the guard). Accelerations and densities exist only for the live particles.
+__kernel void fluid_step_reduce(uint n, uint chunk, uint nblocks, uint ncells, __global const uint* start,
+                                __global const float* x, __global const float* y, __global const float* z,
+                                __global const float* vx, __global const float* vy, __global const float* vz,
+                                __global const float* ax, __global const float* ay, __global const float* az,
+                                __global const float* rho, __global StepReduce* out) {
+  const uint b = get_global_id(0);
+  if (b >= nblocks) return;
+  const uint live = start[ncells];
+  const uint begin = b * chunk;
+  const uint end = min(begin + chunk, n);
+  float max_v2 = 0.0f, max_a2 = 0.0f;
+  int fastest = -1, bad = -1;
+  for (uint i = begin; i < end; ++i) {
+    const float v2 = vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i];
+    bool finite = bw_finite(x[i]) && bw_finite(y[i]) && bw_finite(z[i]) && bw_finite(v2);
+    float a2 = 0.0f;
+    if (i < live) {
+      a2 = ax[i] * ax[i] + ay[i] * ay[i] + az[i] * az[i];
+      finite = finite && bw_finite(a2) && bw_finite(rho[i]);
+    }
+    if (!finite) {
+      if (bad < 0) bad = (int)i;
+      continue;
+    }
+    if (v2 > max_v2 || fastest < 0) {
+      max_v2 = v2;
+      fastest = (int)i;
+    }
+    max_a2 = fmax(max_a2, a2);
+  }
+  StepReduce r;
+  r.max_v2 = max_v2;
+  r.max_a2 = max_a2;
+  r.fastest = fastest;
+  r.bad = bad;
+  out[b] = r;
+}
+
+// Per block: energies and density error for the frame statistics.
+__kernel void fluid_frame_reduce(SimParams P, uint n, uint chunk, uint nblocks, __global const float* x,
+                                 __global const float* y, __global const float* z, __global const float* vx,
+                                 __global const float* vy, __global const float* vz, __global const float* rho,
+                                 __global FrameReduce* out) {
+  const uint b = get_global_id(0);
+  if (b >= nblocks) return;
+  const uint begin = b * chunk;
+  const uint end = min(begin + chunk, n);
+  FrameReduce r;
+  r.kinetic = r.potential = r.elastic = r.error_sum = r.error_max = r.speed_max = 0.0f;
+  r.pad0 = r.pad1 = 0.0f;
+  for (uint i = begin; i < end; ++i) {
+    const float v2 = vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i];
+    r.kinetic += 0.5f * P.mass * v2;
+    r.potential -= P.mass * (P.gx * (x[i] - P.ox) + P.gy * (y[i] - P.oy) + P.gz * (z[i] - P.oz));
+    r.elastic += P.mass * bw_tait_energy(rho[i], P.rho0, P.stiffness, P.gamma);
+    const float err = fmax(rho[i] / P.rho0 - 1.0f, 0.0f);
+    r.error_sum += err;
+    r.error_max = fmax(r.error_max, err);
+    r.speed_max = fmax(r.speed_max, sqrt(v2));
+  }
+  out[b] = r;
+}
+
+// Writes `count` new particles at slots first.. : emitter lattice points
+// px/py/pz[point0 + k] moved by (ox, oy, oz), velocity (ux, uy, uz), ids first_id + k.
+__kernel void fluid_emit(uint count, uint first, uint first_id, uint point0, __global const float* px,
+                         __global const float* py, __global const float* pz, float ox, float oy, float oz, float ux,
+                         float uy, float uz, __global float* x, __global float* y, __global float* z,
+                         __global float* vx, __global float* vy, __global float* vz, __global uint* id) {
+  const uint k = get_global_id(0);
+  if (k >= count) return;
+  const uint i = first + k;
+  x[i] = px[point0 + k] + ox;
+  y[i] = py[point0 + k] + oy;
+  z[i] = pz[point0 + k] + oz;
+  vx[i] = ux;
+  vy[i] = uy;
+  vz[i] = uz;
+  id[i] = first_id + k;
+}

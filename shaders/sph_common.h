@@ -1,0 +1,136 @@
+// Parameter structs and kernel math shared by the simulator's host code (C++) and its
+// OpenCL C kernels (shaders/*.cl), so that both sides agree on layouts and formulas.
+//
+// Structs hold only 4-byte float and int fields (no vector types, no padding rules
+// that differ between compilers), so their layout is the same on host and device; they
+// are passed to kernels by value. The kernel functions follow method.md section 1:
+// Mueller et al. 2003's poly6, spiky and viscosity kernels, all zero beyond the
+// support radius h. The solver uses poly6 for the density and its gradient for the
+// pressure forces (docs/scene.md, "Physics"), the viscosity Laplacian for friction.
+#ifndef BW_SPH_COMMON_H
+#define BW_SPH_COMMON_H
+
+#ifdef __OPENCL_VERSION__
+#define BW_FN static inline
+#define BW_SQRT sqrt
+#define BW_POW pow
+typedef uint bw_uint;
+#else
+#include <cmath>
+#include <cstdint>
+#define BW_FN inline
+#define BW_SQRT std::sqrt
+#define BW_POW std::pow
+typedef std::uint32_t bw_uint;
+#endif
+
+#define BW_PI_F 3.14159265358979323846f
+
+// Everything the fluid kernels need, derived once from the scene (libcore/sim).
+typedef struct {
+  // kernel support radius h (m), h^2, and the constant factors of the three kernels
+  float h, h2;
+  float poly6;      // 315 / (64 pi h^9)
+  float visc;       // 45 / (pi h^6): lap W_visc = visc (h - r)
+  // fluid
+  float mass;       // particle mass (kg): a particle inside a full lattice has rho0
+  float rho0;       // rest density (kg/m^3)
+  float stiffness;  // Tait k (Pa)
+  float gamma;      // Tait exponent
+  float mu;         // viscosity (Pa s)
+  float mu_b;       // boundary friction (Pa s)
+  float gamma1;     // weight of the boundary term in the density
+  float gamma2;     // weight of the boundary pressure force
+  float gx, gy, gz; // gravity (m/s^2)
+  // grid: cubic cells of edge `cell` from `origin`; the domain is the grid's box
+  float ox, oy, oz;
+  float cell, inv_cell;
+  float max_x, max_y, max_z;  // domain maximum corner
+  int nx, ny, nz;
+  int ncells;       // nx * ny * nz; the key of a removed particle
+} SimParams;
+
+// Per-block results of the reduction that runs every step (adaptive dt and guard).
+typedef struct {
+  float max_v2;     // largest |v|^2
+  float max_a2;     // largest |a|^2
+  int fastest;      // index of the (first) particle with max_v2, -1 when none
+  int bad;          // first particle with a non-finite value, -1 when none
+} StepReduce;
+
+// Per-block sums for the frame statistics (host adds the blocks in double).
+typedef struct {
+  float kinetic;        // sum 1/2 m |v|^2 (J)
+  float potential;      // sum -m g.(x - domain minimum corner) (J)
+  float elastic;        // sum m e(rho), e the Tait internal energy per unit mass (J)
+  float error_sum;      // sum max(0, rho/rho0 - 1)
+  float error_max;      // max max(0, rho/rho0 - 1)
+  float speed_max;      // max |v|
+  float pad0, pad1;
+} FrameReduce;
+
+// Grid cell coordinate of a position along one axis, clamped to [0, n - 1] (also for
+// NaN, which lands in cell 0; such particles are removed before they are searched).
+BW_FN int bw_cell_coord(float v, float origin, float inv_cell, int n) {
+  float f = (v - origin) * inv_cell;
+  f = f > 0.0f ? f : 0.0f;
+  const float top = (float)(n - 1);
+  f = f < top ? f : top;
+  return (int)f;
+}
+
+// Linear cell index: x fastest, so the 3 cells of a row along x are contiguous.
+BW_FN int bw_cell_index(int cx, int cy, int cz, int nx, int ny) { return (cz * ny + cy) * nx + cx; }
+
+// W_poly6 from r^2 (no square root needed): 315/(64 pi h^9) (h^2 - r^2)^3.
+BW_FN float bw_poly6(float r2, float h2, float poly6) {
+  const float d = h2 - r2;
+  return r2 < h2 ? poly6 * d * d * d : 0.0f;
+}
+
+// Gradient of W_poly6 with respect to x_i for x_ij = x_i - x_j: grad W = f x_ij with
+// f = -6 poly6 (h^2 - r^2)^2 (returned), zero beyond h.
+BW_FN float bw_poly6_grad_factor(float r2, float h2, float poly6) {
+  const float d = h2 - r2;
+  return r2 < h2 ? -6.0f * poly6 * d * d : 0.0f;
+}
+
+// Gradient of W_spiky with respect to x_i for x_ij = x_i - x_j at distance r > 0:
+// grad W = -45/(pi h^6) (h - r)^2 x_ij / r. Returned: the factor f with grad W = f x_ij.
+BW_FN float bw_spiky_grad_factor(float r, float h) {
+  const float q = h - r;
+  return (r < h && r > 0.0f) ? -45.0f / (BW_PI_F * h * h * h * h * h * h) * q * q / r : 0.0f;
+}
+
+// Laplacian of W_visc: 45/(pi h^6) (h - r).
+BW_FN float bw_visc_lap(float r, float h, float visc) { return r < h ? visc * (h - r) : 0.0f; }
+
+// W_spiky itself, 15/(pi h^6) (h - r)^3 (for tests: it integrates to 1).
+BW_FN float bw_spiky(float r, float h) {
+  const float q = h - r;
+  return r < h ? 15.0f / (BW_PI_F * h * h * h * h * h * h) * q * q * q : 0.0f;
+}
+
+// W_visc itself (Mueller 2003), 15/(2 pi h^3) (-r^3/(2h^3) + r^2/h^2 + h/(2r) - 1),
+// for tests: it integrates to 1 and its Laplacian is bw_visc_lap.
+BW_FN float bw_visc(float r, float h) {
+  if (r >= h || r <= 0.0f) return 0.0f;
+  const float a = r / h;
+  return 15.0f / (2.0f * BW_PI_F * h * h * h) * (-0.5f * a * a * a + a * a + 0.5f / a - 1.0f);
+}
+
+// Tait equation of state, negative pressures clamped to 0 (method.md 1).
+BW_FN float bw_tait(float rho, float rho0, float k, float gamma) {
+  const float p = k * (BW_POW(rho / rho0, gamma) - 1.0f);
+  return p > 0.0f ? p : 0.0f;
+}
+
+// Internal (elastic) energy per unit mass stored by compressing from rho0 to rho under
+// the clamped Tait law: integral of p / rho^2 d rho. Zero below rho0, where p = 0.
+BW_FN float bw_tait_energy(float rho, float rho0, float k, float gamma) {
+  if (rho <= rho0) return 0.0f;
+  const float a = BW_POW(rho / rho0, gamma - 1.0f);
+  return k * ((a - 1.0f) / ((gamma - 1.0f) * rho0) - (1.0f / rho0 - 1.0f / rho));
+}
+
+#endif
