@@ -15,6 +15,7 @@ bw_embed_files(TARGET bw_render_shaders NAMESPACE bw::render::shaders FILES
   ${CMAKE_CURRENT_LIST_DIR}/empty.frag
   ${CMAKE_CURRENT_LIST_DIR}/sky.frag
   ${CMAKE_CURRENT_LIST_DIR}/filter_narrow_range.frag
+  ${CMAKE_CURRENT_LIST_DIR}/filter_narrow_range_2d.frag
   ${CMAKE_CURRENT_LIST_DIR}/filter_bilateral.frag
   ${CMAKE_CURRENT_LIST_DIR}/blur_thickness.frag
   ${CMAKE_CURRENT_LIST_DIR}/blur_shadow.frag

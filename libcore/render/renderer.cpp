@@ -233,7 +233,8 @@ struct Renderer::Impl {
   int full_width = 0, full_height = 0;  // the layers, with the guard band
   float max_point_size = 64;
 
-  Program sky, mesh, mesh_shadow, sprite_fluid, sprite_shadow, filter_narrow, filter_bilateral, blur_thickness,
+  Program sky, mesh, mesh_shadow, sprite_fluid, sprite_shadow, filter_narrow, filter_narrow_2d, filter_bilateral,
+      blur_thickness,
       blur_shadow, normals, composite_scene, composite;
 
   Texture scene_color, scene_depth, fluid_depth, fluid_mask, thickness, thickness_blur, filtered[2], normal_map,
@@ -279,6 +280,7 @@ void Renderer::Impl::build() {
   sprite_fluid = Program("sprite.vert", "sprite_fluid.frag");
   sprite_shadow = Program("sprite_shadow.vert", "sprite_shadow.frag");
   filter_narrow = Program("fullscreen.vert", "filter_narrow_range.frag");
+  filter_narrow_2d = Program("fullscreen.vert", "filter_narrow_range_2d.frag");
   filter_bilateral = Program("fullscreen.vert", "filter_bilateral.frag");
   blur_thickness = Program("fullscreen.vert", "blur_thickness.frag");
   blur_shadow = Program("fullscreen.vert", "blur_shadow.frag");
@@ -624,6 +626,13 @@ Image Renderer::render(const RenderInput& in) {
     gl::BindTextureUnit(0, r.filtered[0].id);
     gl::DrawArrays(GL_TRIANGLES, 0, 3);
     r.smoothed = r.filtered[1].id;
+    if (!bilateral) {  // the narrow-range filter's small 2-D pass
+      r.filter_narrow_2d.use();
+      gl::BindFramebuffer(GL_FRAMEBUFFER, r.filter_fb[0].id);
+      gl::BindTextureUnit(0, r.filtered[1].id);
+      gl::DrawArrays(GL_TRIANGLES, 0, 3);
+      r.smoothed = r.filtered[0].id;
+    }
   }
   if (count > 0) {
     // Thickness: thickness -> thickness_blur -> thickness.
