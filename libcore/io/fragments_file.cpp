@@ -31,6 +31,8 @@ void write_fragments(const FragmentSet& set, const std::string& path) {
   h5::File file = h5::File::create(path, kKind);
   h5::Group& root = file.root();
   root.set_attr("source", set.source);
+  if (!set.tool.empty()) root.set_attr("tool", set.tool);
+  if (!set.options.empty()) root.set_attr("options", set.options);
   root.write<double>("vertices", vertices, {vertices.size() / 3, 3});
   root.write<std::int32_t>("triangles", triangles, {triangles.size() / 3, 3});
   root.write<double>("seeds", io::flatten(set.seeds), {set.seeds.size(), 3});
@@ -49,6 +51,8 @@ FragmentSet read_fragments(const std::string& path) {
   const h5::Group& root = file.root();
   FragmentSet set;
   set.source = root.has_attr("source") ? root.attr_string("source") : "";
+  set.tool = root.has_attr("tool") ? root.attr_string("tool") : "";
+  set.options = root.has_attr("options") ? root.attr_string("options") : "";
   std::size_t nv = 0, nt = 0, ns = 0, n = 0, rows = 0;
   const auto vertices = root.read_rows<double>("vertices", 3, &nv);
   const auto triangles = root.read_rows<std::int32_t>("triangles", 3, &nt);

@@ -21,6 +21,8 @@ struct Fragment {
 
 struct FragmentSet {
   std::string source;           // what was cut: a mesh, a particle file or a run
+  std::string tool;             // tool and version that wrote the file ("" when unknown)
+  std::string options;          // the tool's effective options, to reproduce the file
   std::vector<Vec3d> seeds;
   std::vector<Fragment> fragments;
 };
