@@ -1,0 +1,108 @@
+// bw-voronoi: cut a solid into the Voronoi cells of fracture seeds with exact
+// geometry, check the fragments (the prefracture check), write their meshes.
+#include <cstdio>
+
+#include "cli/tool.h"
+#include "common/terminal.h"
+#include "voronoi/check.h"
+
+namespace {
+
+struct CheckArgs {
+  std::string input;
+  std::string seeds;
+  std::size_t random = 0;
+  std::uint64_t random_seed = 1;
+  std::string output;
+  std::string export_dir;
+  std::string export_format = "obj";
+  bool json = false;
+  int threads = 0;
+  bool verbose = false;
+};
+
+void print(const std::string& text, bool to_stderr) { std::fputs(text.c_str(), to_stderr ? stderr : stdout); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Cut a solid into the Voronoi cells of fracture seeds, with exact geometry, and check the\n"
+               "fragments: closed, filling the solid exactly, inside it and inside their cells.",
+               "bw-voronoi"};
+  bw::cli::setup(app,
+                 "  bw-voronoi check house.obj --random 100 --seed 7\n"
+                 "  bw-voronoi check wall.h5 --seeds seeds.txt -o wall_fragments.h5 --export wall_fragments/\n"
+                 "  bw-voronoi check plate.obj --seeds old_fragments.h5 --json > report.json\n"
+                 "  bw-sample dam.obj --spacing 0.02 -o - | bw-voronoi check - --random 50\n"
+                 "Exit status: 0 every check passed, 3 a check failed, 2 bad usage or input, 1 failure.\n");
+  app.require_subcommand(1);
+
+  CheckArgs c;
+  CLI::App* check = app.add_subcommand(
+      "check", "Prefracture check: cut INPUT by the seeds' Voronoi cells and check every fragment");
+  check->add_option("input", c.input,
+                    "A mesh (any format assimp reads) or a bw-sample particles file, which carries its mesh "
+                    "('-': particles file on standard input)")
+      ->required();
+  CLI::Option* seeds = check->add_option(
+      "--seeds", c.seeds, "Seeds file: text with 'x y z' per line, or a breakwater HDF5 file with /seeds");
+  CLI::Option* random =
+      check->add_option("--random", c.random, "Draw N seeds uniformly inside the mesh")->check(CLI::PositiveNumber);
+  check->add_option("--seed", c.random_seed, "Random seed for --random (the same seed gives the same seeds)")
+      ->needs(random);
+  seeds->excludes(random);
+  check->add_option("-o,--output", c.output, "Fragments file to write (HDF5; '-' for standard output)");
+  check->add_option("--export", c.export_dir, "Also write each fragment as a mesh file into this folder");
+  check->add_option("--export-format", c.export_format, "Mesh format of --export")
+      ->check(CLI::IsMember({"obj", "ply"}));
+  check->add_flag("--json", c.json, "Print the report as JSON");
+  check->add_option("--threads", c.threads, "Worker threads (default: one per hardware thread)")
+      ->check(CLI::NonNegativeNumber);
+  check->add_flag("-v,--verbose", c.verbose, "Print the options used");
+
+  return bw::cli::run(app, argc, argv, [&] {
+    if (!*seeds && !*random) throw bw::InputError("check: give the seeds with --seeds FILE or --random N");
+    // The report goes to standard output, unless the fragments file does.
+    const bool report_to_stderr = c.output == "-";
+    if (c.verbose) {
+      bw::cli::note(app, fmt::format("check {} with {}, output {}, export {} ({}), threads {}", c.input,
+                                     *random ? fmt::format("--random {} --seed {}", c.random, c.random_seed)
+                                             : "--seeds " + c.seeds,
+                                     c.output.empty() ? "none" : c.output,
+                                     c.export_dir.empty() ? "none" : c.export_dir, c.export_format, c.threads));
+    }
+    bw::voronoi::CheckOptions options;
+    options.source = c.input;
+    options.threads = c.threads;
+    options.warn = [&](const std::string& message) { bw::cli::note(app, "warning: " + message); };
+    bw::ProgressLine progress;
+    if (progress.active()) {
+      options.progress = [&](std::size_t done, std::size_t total) {
+        progress.update(fmt::format("cutting cells: {} / {}", done, total), done == total);
+      };
+    }
+    bw::voronoi::SeedChoice choice;
+    if (*random) {
+      choice.random = c.random;
+      choice.random_seed = c.random_seed;
+    } else {
+      choice.points = bw::voronoi::read_seeds(c.seeds);
+    }
+    bw::TriMesh mesh = bw::voronoi::load_solid_mesh(c.input, &options.input_kind);
+
+    const bw::voronoi::CheckResult result = bw::voronoi::prefracture_check(std::move(mesh), choice, options);
+    progress.clear();
+
+    // Written also when a check fails, so that the fragments can be looked at.
+    if (!c.output.empty()) {
+      bw::FragmentSet set = result.fragment_set();
+      set.tool = "bw-voronoi " BW_VERSION;
+      set.options = *random ? fmt::format("check --random {} --seed {}", c.random, c.random_seed)
+                            : "check --seeds " + c.seeds;
+      bw::write_fragments(set, c.output);
+    }
+    if (!c.export_dir.empty()) bw::voronoi::export_fragments(result.fragments, c.export_dir, c.export_format);
+    print(c.json ? result.report().to_json() + "\n" : result.text(), report_to_stderr);
+    return result.passed() ? bw::kExitOk : bw::kExitCheckFailed;
+  });
+}
