@@ -25,7 +25,7 @@ void on_warning(png_structp, png_const_charp) {}
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_png(const Image& image) {
+std::vector<std::uint8_t> encode_png(const Image& image, const PngText& text) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgb.size() != 3 * static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
     fail_run("encode_png: image of {} x {} holds {} bytes", image.width, image.height, image.rgb.size());
@@ -48,6 +48,14 @@ std::vector<std::uint8_t> encode_png(const Image& image) {
     png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_UP);
     png_set_IHDR(png, info, static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height), 8,
                  PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_BASE, PNG_FILTER_TYPE_BASE);
+    std::vector<png_text> chunks(text.size());
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      chunks[i].compression = PNG_TEXT_COMPRESSION_NONE;
+      chunks[i].key = const_cast<char*>(text[i].first.c_str());
+      chunks[i].text = const_cast<char*>(text[i].second.c_str());
+      chunks[i].text_length = text[i].second.size();
+    }
+    if (!chunks.empty()) png_set_text(png, info, chunks.data(), static_cast<int>(chunks.size()));
     png_write_info(png, info);
     for (int y = 0; y < image.height; ++y)
       png_write_row(png, const_cast<png_bytep>(&image.rgb[3 * static_cast<std::size_t>(y) * image.width]));
@@ -57,8 +65,8 @@ std::vector<std::uint8_t> encode_png(const Image& image) {
   return bytes;
 }
 
-void write_png(const Image& image, const std::string& path) {
-  const std::vector<std::uint8_t> bytes = encode_png(image);
+void write_png(const Image& image, const std::string& path, const PngText& text) {
+  const std::vector<std::uint8_t> bytes = encode_png(image, text);
   write_file_atomically(path, bytes.data(), bytes.size());
 }
 

@@ -231,6 +231,15 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
   std::unique_ptr<VideoWriter> video;
   if (!job.video_path.empty()) video = std::make_unique<VideoWriter>(job.video_path, plan.fps);
 
+  // What the images were made with, stored in each PNG (a frame can be remade).
+  const Camera& c = report.camera;
+  const std::string settings_text = fmt::format(
+      "camera {:.6g},{:.6g},{:.6g}:{:.6g},{:.6g},{:.6g}:{:.6g} up {:.6g},{:.6g},{:.6g}; particle radius {:.6g} m "
+      "(spacing {:.6g} m); ground {:.6g} m; filter {}; light {:.6g},{:.6g},{:.6g}; {} x {}",
+      c.position.x(), c.position.y(), c.position.z(), c.target.x(), c.target.y(), c.target.z(), c.fov_degrees,
+      c.up.x(), c.up.y(), c.up.z(), radius, spacing, report.ground_height, filter_name(settings.filter),
+      settings.light.direction.x(), settings.light.direction.y(), settings.light.direction.z(), settings.width,
+      settings.height);
   double render_seconds = 0;
   for (std::size_t i = 0; i < plan.frames.size(); ++i) {
     const FramePlan& f = plan.frames[i];
@@ -249,7 +258,9 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
     input.particle_spacing = spacing;
     input.ground_height = report.ground_height;
     const Image image = renderer.render(input);
-    const std::vector<std::uint8_t> png = encode_png(image);
+    const std::vector<std::uint8_t> png = encode_png(image, {{"Software", "bw-render " BW_VERSION},
+                                                             {"Title", fmt::format("frame {}, t = {:.6g} s", f.number, f.time)},
+                                                             {"Comment", settings_text}});
     write_file_atomically(fmt::format("{}/{:06d}.png", job.output_dir, f.number), png.data(), png.size());
     if (video) video->add_png(png);
     render_seconds += frame_clock.seconds();

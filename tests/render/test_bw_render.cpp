@@ -67,6 +67,11 @@ TEST(BwRender, OnePngPerFrameNamedByNumber) {
   const br::Image image = br::read_png(dir.file("images/000003.png"));
   EXPECT_EQ(image.width, 160);
   EXPECT_EQ(image.height, 120);
+  // The settings used are kept in the image (PNG text chunks).
+  const std::string png = slurp(dir.file("images/000003.png"));
+  EXPECT_NE(png.find("bw-render "), std::string::npos);
+  EXPECT_NE(png.find("frame 3, t = 0.1 s"), std::string::npos);
+  EXPECT_NE(png.find("filter narrow-range"), std::string::npos);
   // Quiet output when stderr is not a terminal: the summary line, with ms per frame.
   EXPECT_EQ(bw::test::line_count(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("ms per frame"), std::string::npos) << r.err;
