@@ -449,22 +449,29 @@ Image Renderer::render(const RenderInput& in) {
     }
   }
   if (shadow_box.empty()) shadow_box.add(cam.target);
-  const Vec3d sc = 0.5 * (shadow_box.min + shadow_box.max);
-  const double sr = std::max(0.5 * shadow_box.extent().norm(), 1e-3);
+  // The light's frame is a fixed rotation; its square is sized in steps of 2^(1/4) and
+  // placed on whole texels of the water's (coarser) map, so that shadows do not
+  // shimmer from frame to frame as the content moves.
   const Vec3d light_up = std::abs(light_dir.z()) < 0.99 ? Vec3d(0, 0, 1) : Vec3d(0, 1, 0);
-  const Mat4d light_view = look_at(sc - 2 * sr * light_dir, sc, light_up);
-  // Bound the box's corners in light space for a tight square.
-  double lx = 0, ly = 0;
+  const Mat4d light_view = look_at(Vec3d::Zero(), light_dir, light_up);
+  Aabb light_box;
   for (int i = 0; i < 8; ++i) {
     const Vec3d corner((i & 1) ? shadow_box.max.x() : shadow_box.min.x(),
                        (i & 2) ? shadow_box.max.y() : shadow_box.min.y(),
                        (i & 4) ? shadow_box.max.z() : shadow_box.min.z());
-    const Eigen::Vector4d q = light_view * Eigen::Vector4d(corner.x(), corner.y(), corner.z(), 1);
-    lx = std::max(lx, std::abs(q.x()));
-    ly = std::max(ly, std::abs(q.y()));
+    light_box.add((light_view * Eigen::Vector4d(corner.x(), corner.y(), corner.z(), 1)).head<3>());
   }
-  const double half_side = std::max({lx, ly, 1e-3}) * 1.02;
-  const Mat4d light_proj = orthographic(-half_side, half_side, -half_side, half_side, 1e-3 * sr, 4 * sr);
+  const Vec3d light_extent = light_box.extent();
+  const double half_fit = std::max({0.5 * light_extent.x(), 0.5 * light_extent.y(), 1e-3}) * 1.02;
+  const double half_side = std::exp2(std::ceil(4 * std::log2(half_fit)) / 4);
+  const double snap = 2 * half_side / kFluidShadowSize;
+  const double cx = snap * std::round(0.5 * (light_box.min.x() + light_box.max.x()) / snap);
+  const double cy = snap * std::round(0.5 * (light_box.min.y() + light_box.max.y()) / snap);
+  // View-space z of the box runs from min.z (far) to max.z (near); a margin around it.
+  const double depth_margin = 0.05 * light_extent.z() + 1e-3;
+  const double light_near = -light_box.max.z() - depth_margin, light_far = -light_box.min.z() + depth_margin;
+  const Mat4d light_proj =
+      orthographic(cx - half_side, cx + half_side, cy - half_side, cy + half_side, light_near, light_far);
   const double shadow_texel = 2 * half_side / kSolidShadowSize;
 
   // Thickness scale: a particle stands for spacing^3 of water, its sphere holds more.
@@ -498,9 +505,8 @@ Image Renderer::render(const RenderInput& in) {
   const double shadow_radius = rad * std::cbrt(static_cast<double>(shadow_stride));
   put(u.misc, kGuardPixels, r.max_point_size,
       std::min<double>(shadow_radius * kFluidShadowSize / half_side, r.max_point_size), shadow_radius);
-  // Two shadow-sphere diameters of light depth (the orthographic depth range is
-  // near .. far = 1e-3 sr .. 4 sr).
-  put(u.shadow, 4 * shadow_radius / (4 * sr - 1e-3 * sr), 0, 0, 0);
+  // Two shadow-sphere diameters, in the light's depth units.
+  put(u.shadow, 4 * shadow_radius / (light_far - light_near), 0, 0, 0);
   r.uniforms.upload(&u, sizeof u);
   gl::BindBufferBase(GL_UNIFORM_BUFFER, 0, r.uniforms.id);
   gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, r.particles.id);
