@@ -26,9 +26,10 @@ constexpr int kFluidShadowSize = 512;
 constexpr double kGroundExtent = 60.0;
 // Haze: the ground fades to the horizon colour over this many camera distances.
 constexpr double kFogDistances = 6.0;
-// Narrow-range filter: depths farther than this many particle radii from the
-// centre's belong to another layer; samples behind are clamped to the centre's depth
-// plus kClampRatio radii (the paper's threshold and clamp ratios).
+// Narrow-range filter, in particle radii: samples more than kRangeRatio nearer than
+// the centre belong to another layer (a drop in front of the pool: a few radii apart);
+// samples behind, or no fluid, are clamped to the centre's depth plus kClampRatio
+// (Truong and Yuksel's clamp of one radius, which rounds silhouettes off).
 constexpr double kRangeRatio = 5.0;
 constexpr double kClampRatio = 1.0;
 // The water's shadow is soft and its map coarse: beyond this many particles, only
@@ -229,13 +230,12 @@ void check_gl(const char* where) {
 
 struct Renderer::Impl {
   RenderSettings settings;
-  int width = 0, height = 0;        // the image
+  int width = 0, height = 0;            // the image
   int full_width = 0, full_height = 0;  // the layers, with the guard band
   float max_point_size = 64;
 
   Program sky, mesh, mesh_shadow, sprite_fluid, sprite_shadow, filter_narrow, filter_narrow_2d, filter_bilateral,
-      blur_thickness,
-      blur_shadow, normals, composite_scene, composite;
+      blur_thickness, blur_shadow, normals, composite_scene, composite;
 
   Texture scene_color, scene_depth, fluid_depth, fluid_mask, thickness, thickness_blur, filtered[2], normal_map,
       final_color;

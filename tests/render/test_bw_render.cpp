@@ -114,6 +114,26 @@ TEST(BwRender, SceneTablesAndCommandLine) {
   EXPECT_NE(r.err.find("camera       1,-3,1:0,0,0.5:30\n"), std::string::npos) << r.err;
 }
 
+// A breakable wall cut into fragments that the frame poses: drawn with the fragments
+// file, counted as bodies without a mesh without it.
+TEST(BwRender, FragmentsPlacedByTheirBodies) {
+  bw::test::TempDir dir;
+  write_run(dir, {});
+  bw::FrameData f = br::test::splash_frame(3000);
+  br::test::break_wall(dir.path(), f);
+  bw::write_frame(f, bw::frame_file_name(dir.file("frames"), 0));
+  auto r = run(kTool + " " + dir.file("frames") + " -o " + dir.file("with") + " --fragments " +
+               dir.file("fragments.h5") + " -v" + kSmall);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("fragments 3"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("no mesh"), std::string::npos) << r.err;
+  r = run(kTool + " " + dir.file("frames") + " -o " + dir.file("without") + kSmall);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("up to 3 bodies per frame had no mesh to draw (give --fragments)"), std::string::npos)
+      << r.err;
+  EXPECT_NE(slurp(dir.file("with/000000.png")), slurp(dir.file("without/000000.png")));
+}
+
 TEST(BwRender, Video) {
   if (br::find_on_path("ffmpeg").empty()) GTEST_SKIP() << "ffmpeg is not installed";
   bw::test::TempDir dir;
