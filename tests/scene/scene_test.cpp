@@ -1,0 +1,242 @@
+// Scene files: a full scene is read with every key, defaults are those of
+// docs/scene.md, and each bad input is an InputError whose one-line message names
+// the file and the key's path.
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "common/error.h"
+#include "scene/scene.h"
+#include "test_support.h"
+
+namespace bw::scene {
+namespace {
+
+// A folder with a scene file and an (empty) particle file next to it.
+struct SceneFolder {
+  test::TempDir dir;
+  SceneFolder() { std::ofstream(dir.file("wall.h5")) << "x"; }
+  std::string write(const std::string& text, const std::string& name = "scene.toml") const {
+    const std::string path = dir.file(name);
+    std::ofstream(path) << text;
+    return path;
+  }
+};
+
+const std::string kMinimal = R"(
+spacing = 0.02
+[time]
+end = 1.0
+[domain]
+min = [0, 0, 0]
+max = [1, 1, 1]
+[[fluid.block]]
+min = [0.1, 0.1, 0.1]
+max = [0.5, 0.5, 0.5]
+)";
+
+// The error message of loading `text`, or "" when it loads.
+std::string error_of(const SceneFolder& f, const std::string& text) {
+  try {
+    load_scene(f.write(text));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void expect_error(const SceneFolder& f, const std::string& text, const std::string& expected) {
+  const std::string m = error_of(f, text);
+  EXPECT_NE(m.find(expected), std::string::npos) << "message: '" << m << "'\nexpected to contain: '" << expected << "'";
+  EXPECT_EQ(m.find('\n'), std::string::npos) << "one line: " << m;
+  EXPECT_NE(m.find("scene.toml"), std::string::npos) << "names the file: " << m;
+}
+
+TEST(Scene, MinimalSceneHasDocumentedDefaults) {
+  SceneFolder f;
+  const Scene s = load_scene(f.write(kMinimal));
+  EXPECT_DOUBLE_EQ(s.spacing, 0.02);
+  EXPECT_DOUBLE_EQ(s.smoothing_length, 0.04);
+  EXPECT_EQ(s.gravity, Vec3d(0, 0, -9.81));
+  EXPECT_DOUBLE_EQ(s.time.frame_rate, 60);
+  EXPECT_DOUBLE_EQ(s.time.dt_min, 1e-6);
+  EXPECT_DOUBLE_EQ(s.time.dt_max, 2e-3);
+  EXPECT_DOUBLE_EQ(s.time.cfl, 0.4);
+  EXPECT_DOUBLE_EQ(s.time.force_factor, 0.25);
+  EXPECT_DOUBLE_EQ(s.time.viscous_factor, 0.125);
+  EXPECT_DOUBLE_EQ(s.fluid.rho0, 998);
+  EXPECT_EQ(s.fluid.k, 0);
+  EXPECT_EQ(s.fluid.c0, 0);
+  EXPECT_DOUBLE_EQ(s.fluid.gamma, 7);
+  EXPECT_DOUBLE_EQ(s.fluid.mu_b, s.fluid.mu);
+  EXPECT_DOUBLE_EQ(s.fluid.gamma1, 1);
+  EXPECT_LT(s.fluid.gamma2, 0) << "gamma2 defaults to gamma1 / 2, resolved by the solver";
+  EXPECT_EQ(s.fluid.max_particles, 0);
+  ASSERT_EQ(s.blocks.size(), 1u);
+  EXPECT_TRUE(s.fields.velocity);
+  EXPECT_FALSE(s.fields.density || s.fields.pressure || s.fields.id || s.fields.boundary);
+  EXPECT_TRUE(s.solids.empty() && s.emitters.empty());
+}
+
+TEST(Scene, ReadsEveryKey) {
+  SceneFolder f;
+  const Scene s = load_scene(f.write(R"(
+spacing = 0.01
+smoothing_length = 0.025
+gravity = [0, 0, -10]
+[time]
+end = 2
+frame_rate = 30
+dt_min = 1e-7
+dt_max = 1e-3
+cfl = 0.3
+force_factor = 0.2
+viscous_factor = 0.1
+[domain]
+min = [-1, -1, 0]
+max = [1, 1, 2]
+[fluid]
+rho0 = 1000
+c0 = 40
+gamma = 7
+mu = 0.02
+mu_b = 0.1
+gamma1 = 0.8
+gamma2 = 0.6
+max_particles = 50000
+[[fluid.block]]
+min = [0, 0, 0]
+max = [0.2, 0.2, 0.2]
+velocity = [1, 0, 0]
+[[fluid.emitter]]
+shape = "disc"
+center = [0, 0, 1]
+normal = [0, 0, -2]
+radius = 0.05
+speed = 2
+start = 0.1
+stop = 0.5
+[[fluid.emitter]]
+shape = "rectangle"
+center = [0.5, 0, 1]
+normal = [1, 0, 0]
+size = [0.1, 0.05]
+up = [0, 0, 1]
+speed = 1
+[[solid]]
+name = "wall"
+particles = "wall.h5"
+translation = [1, 2, 3]
+rotation = [0, 0, 90]
+scale = 2
+[output]
+fields = ["velocity", "density", "pressure", "id", "boundary"]
+[camera]
+position = [1, 2, 3]
+anything = "the renderer's"
+[light]
+direction = [0, 0, -1]
+[render]
+width = 640
+)"));
+  EXPECT_DOUBLE_EQ(s.smoothing_length, 0.025);
+  EXPECT_EQ(s.gravity, Vec3d(0, 0, -10));
+  EXPECT_DOUBLE_EQ(s.time.cfl, 0.3);
+  EXPECT_DOUBLE_EQ(s.fluid.c0, 40);
+  EXPECT_DOUBLE_EQ(s.fluid.mu_b, 0.1);
+  EXPECT_DOUBLE_EQ(s.fluid.gamma2, 0.6);
+  EXPECT_EQ(s.fluid.max_particles, 50000);
+  ASSERT_EQ(s.emitters.size(), 2u);
+  EXPECT_EQ(s.emitters[0].shape, Emitter::Shape::disc);
+  EXPECT_NEAR(s.emitters[0].normal.z(), -1, 1e-12) << "normals are normalized";
+  EXPECT_DOUBLE_EQ(s.emitters[0].stop, 0.5);
+  EXPECT_TRUE(std::isinf(s.emitters[1].stop)) << "stop defaults to the end of the run";
+  EXPECT_EQ(s.emitters[1].size, Eigen::Vector2d(0.1, 0.05));
+  ASSERT_EQ(s.solids.size(), 1u);
+  EXPECT_EQ(s.solids[0].name, "wall");
+  EXPECT_EQ(s.solids[0].particles, f.dir.file("wall.h5")) << "relative to the scene file";
+  EXPECT_TRUE(s.solids[0].to_world(Vec3d(1, 0, 0)).isApprox(Vec3d(1, 4, 3), 1e-12)) << "scale, rotate about z, translate";
+  EXPECT_TRUE(s.fields.velocity && s.fields.density && s.fields.pressure && s.fields.id && s.fields.boundary);
+}
+
+TEST(Scene, RotationIsAboutXThenYThenZ) {
+  Solid solid;
+  solid.rotation_degrees = Vec3d(90, 0, 90);
+  // x-rotation first takes y to z; then z-rotation leaves z alone.
+  EXPECT_TRUE(solid.to_world(Vec3d(0, 1, 0)).isApprox(Vec3d(0, 0, 1), 1e-12)) << solid.to_world(Vec3d(0, 1, 0)).transpose();
+  // x to x, then z-rotation takes x to y.
+  EXPECT_TRUE(solid.to_world(Vec3d(1, 0, 0)).isApprox(Vec3d(0, 1, 0), 1e-12));
+}
+
+TEST(Scene, NameDefaultsToTheFileStem) {
+  SceneFolder f;
+  const Scene s = load_scene(f.write(kMinimal + "[[solid]]\nparticles = \"wall.h5\"\n"));
+  EXPECT_EQ(s.solids.at(0).name, "wall");
+}
+
+TEST(SceneErrors, UnknownKeysNameTheirPath) {
+  SceneFolder f;
+  expect_error(f, "colour = 3\n" + kMinimal, "scene.toml: colour: unknown key");
+  expect_error(f, kMinimal + "colour = 3\n", "scene.toml: fluid.block[0].colour: unknown key");
+  expect_error(f, kMinimal + "[fluid]\nviscosity = 1\n", "fluid.viscosity: unknown key");
+  expect_error(f, kMinimal + "[[solid]]\nparticles = \"wall.h5\"\nscael = 2\n", "solid[0].scael: unknown key (did you mean 'scale'?)");
+  expect_error(f, kMinimal + "[[solid]]\nparticles = \"wall.h5\"\ndynamic = true\n", "solid[0].dynamic: unknown key");
+  expect_error(f, kMinimal + "[fracture]\nwindow = 0.01\n", "fracture: unknown key");
+  expect_error(f, kMinimal + "[output]\nfields = [\"speed\"]\n", "output.fields: 'speed' is not a field");
+}
+
+TEST(SceneErrors, OutOfRangeValues) {
+  SceneFolder f;
+  expect_error(f, "spacing = -0.01\n[time]\nend = 1\n", "spacing: -0.01 must be positive");
+  expect_error(f, kMinimal + "[[solid]]\nparticles = \"wall.h5\"\n[[solid]]\nparticles = \"wall.h5\"\n[[solid]]\nparticles = \"wall.h5\"\nscale = -1\n",
+               "solid[2].scale: -1 must be positive");
+  expect_error(f, kMinimal + "[fluid]\nmax_particles = 0\n", "fluid.max_particles: 0 must be at least 1");
+  expect_error(f, kMinimal + "[fluid]\nk = 1000\nc0 = 30\n", "fluid.c0: give either k or c0, not both");
+  expect_error(f, kMinimal + "[fluid]\ngamma = 0.5\n", "fluid.gamma: 0.5 must be at least 1");
+  expect_error(f, kMinimal + "[fluid]\nmu = -1\n", "fluid.mu: -1 must not be negative");
+  expect_error(f, "spacing = 0.02\nsmoothing_length = 0.2\n[time]\nend = 1\n", "smoothing_length: 0.2 is 10 spacings");
+  expect_error(f, "spacing = 0.02\n[time]\nend = 0\n", "time.end: 0 must be positive");
+  expect_error(f, "spacing = 0.02\n[time]\nend = 1\ncfl = 2\n", "time.cfl: 2 is outside (0, 1]");
+  expect_error(f, "spacing = 0.02\n[time]\nend = 1\ndt_min = 1e-3\ndt_max = 1e-4\n", "time.dt_max: 0.0001 is smaller than dt_min");
+  expect_error(f, "spacing = 0.02\n[time]\nend = 1\n[domain]\nmin = [0, 0, 0]\nmax = [1, 0, 1]\n", "domain.max: [1, 0, 1] must exceed min");
+  expect_error(f, kMinimal + "[[fluid.block]]\nmin = [0.5, 0.5, 0.5]\nmax = [1.5, 0.6, 0.6]\n", "fluid.block[1]: the block reaches outside the domain");
+  expect_error(f, kMinimal + "[[fluid.emitter]]\nshape = \"disc\"\ncenter = [0.5, 0.5, 0.9]\nnormal = [0, 0, -1]\nradius = 0.1\nspeed = 1\nstart = 0.5\nstop = 0.2\n",
+               "fluid.emitter[0].stop: 0.2 must be later than start (0.5)");
+  expect_error(f, kMinimal + "[[fluid.emitter]]\nshape = \"cone\"\n", "fluid.emitter[0].shape: 'cone' is not \"disc\" or \"rectangle\"");
+  expect_error(f, kMinimal + "[[fluid.emitter]]\nshape = \"disc\"\ncenter = [0.5, 0.5, 0.9]\nnormal = [0, 0, 0]\n", "fluid.emitter[0].normal: must not be zero");
+}
+
+TEST(SceneErrors, MissingAndMistypedValues) {
+  SceneFolder f;
+  expect_error(f, "[time]\nend = 1\n", "spacing: missing (required)");
+  expect_error(f, "spacing = 0.02\n", "time: missing");
+  expect_error(f, "spacing = 0.02\n[time]\nend = 1\n", "domain: missing");
+  expect_error(f, "spacing = 0.02\n[time]\nend = 1\n[domain]\nmin = [0, 0, 0]\nmax = [1, 1, 1]\n", "the scene has no fluid");
+  expect_error(f, "spacing = \"small\"\n", "spacing: expected a number, found a string");
+  expect_error(f, "gravity = [0, -9.81]\n" + kMinimal, "scene.toml: gravity: expected an array of 3 numbers, found 2 values");
+  expect_error(f, kMinimal + "[fluid]\nmax_particles = 1.5\n", "fluid.max_particles: 1.5 is not a whole number");
+  expect_error(f, kMinimal + "[[solid]]\nname = \"x\"\n", "solid[0].particles: missing");
+  expect_error(f, kMinimal + "[[solid]]\nparticles = \"nowhere.h5\"\n", "solid[0].particles: nowhere.h5: no such file");
+  expect_error(f, kMinimal + "[camera]\n[[camera]]\n", "scene.toml:");
+}
+
+TEST(SceneErrors, SyntaxErrorsGiveLineAndColumn) {
+  SceneFolder f;
+  const std::string m = error_of(f, "spacing = 0.02\n[time\nend = 1\n");
+  EXPECT_NE(m.find("scene.toml:2:"), std::string::npos) << m;
+  EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+}
+
+TEST(SceneErrors, MissingSceneFile) {
+  try {
+    load_scene("/nonexistent/scene.toml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/scene.toml: no such file"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace bw::scene
