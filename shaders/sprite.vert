@@ -13,6 +13,9 @@ void main() {
   float dist = length(c);
   v_center = c;
   gl_Position = u_proj * vec4(c, 1.0);
+  // The fluid mask takes the sprite's constant depth (window depth 0.0005, in front
+  // of the full-screen passes' 0.5); the sphere's own depth goes to the colour target.
+  gl_Position.z = -0.999 * gl_Position.w;
   // The camera inside a sphere, or a sphere behind the near plane: nothing to draw.
   if (dist <= r * 1.001 || -c.z < u_camera.x) {
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);

@@ -4,7 +4,8 @@
 //     the nearest sphere wins), unless a solid stands in front;
 //  1. the sphere's chord along the ray, cut where a solid stands (blended with ADD:
 //     the thickness of all the water on the ray);
-// and depth 0 into the fluid mask, so that later passes skip the other pixels.
+// and, through the depth buffer, the fluid mask (sprite.vert), so that later passes
+// skip the other pixels.
 flat in vec3 v_center;
 layout(binding = 0) uniform sampler2D t_scene_depth;
 layout(location = 0) out float o_depth;
@@ -22,7 +23,5 @@ void main() {
   float scene = eye_distance(texelFetch(t_scene_depth, ivec2(gl_FragCoord.xy), 0).r);
   float t_scene = scene / max(-d.z, 1e-6);
   o_depth = t_front < t_scene ? -t_front * d.z : kNoFluid;
-  // The fluid mask: the passes that work on fluid pixels only test against it.
-  gl_FragDepth = 0.0;
   o_thickness = max(min(t_back, t_scene) - t_front, 0.0) * u_ground.w;
 }
