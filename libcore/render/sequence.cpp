@@ -27,6 +27,11 @@ namespace {
 
 // Video frame rate when the frames' times do not give one.
 constexpr double kDefaultFps = 30;
+// The reference frame is the folder's first with at least kReferenceParticles
+// particles (a scene with emitters starts nearly empty), among its first
+// kReferenceScan frames; failing that, the folder's first.
+constexpr std::size_t kReferenceParticles = 64;
+constexpr int kReferenceScan = 32;
 // Sphere radius (m) when the reference frame has too few particles to measure their
 // spacing: a centimetre suits the metre-sized example scenes.
 constexpr double kFallbackRadius = 0.01;
@@ -137,7 +142,10 @@ SequencePlan plan_sequence(const SequenceJob& job) {
   if (!fs::is_directory(job.frames_dir, ec)) fail_input("{}: no such folder of frames", job.frames_dir);
   const std::map<int, std::string> frames = list_frames(job.frames_dir);
   if (frames.empty()) fail_input("{}: holds no frame files (NNNNNN.h5)", job.frames_dir);
-  plan.reference_frame = frames.begin()->second;
+  for (const auto& [number, path] : frames) {
+    if (static_cast<int>(plan.reference_frames.size()) == kReferenceScan) break;
+    plan.reference_frames.push_back(path);
+  }
 
   const int first = job.range.first.value_or(frames.begin()->first);
   const int last = job.range.last.value_or(frames.rbegin()->first);
@@ -190,10 +198,18 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
   report.solids = solids.solid_count();
   report.fragments = solids.fragment_count();
 
-  // The reference frame (the folder's first) fixes what must not change within a
-  // sequence, whichever part of it this process renders: particle size, ground
-  // height, the fitted camera.
-  const FrameData reference = read_frame(plan.reference_frame);
+  // The reference frame fixes what must not change within a sequence, whichever part
+  // of it this process renders: particle size, ground height, the fitted camera.
+  // Chosen among the folder's first frames, not the range's, so every part agrees.
+  FrameData reference = read_frame(plan.reference_frames.front());
+  report.reference_frame = plan.reference_frames.front();
+  for (std::size_t k = 1; k < plan.reference_frames.size() && reference.fluid_count() < kReferenceParticles; ++k) {
+    FrameData next = read_frame(plan.reference_frames[k]);
+    if (next.fluid_count() >= kReferenceParticles) {
+      reference = std::move(next);
+      report.reference_frame = plan.reference_frames[k];
+    }
+  }
   const double spacing =
       estimate_particle_spacing(reference.x.data(), reference.y.data(), reference.z.data(), reference.fluid_count());
   double radius = settings.particle_radius;

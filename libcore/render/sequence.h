@@ -49,7 +49,9 @@ struct FramePlan {
 // fragments files read. Throws InputError for bad input.
 struct SequencePlan {
   std::vector<FramePlan> frames;       // to render, in order
-  std::string reference_frame;         // lowest-numbered frame of the folder
+  // The folder's first frames, in order: the reference frame is the first of them
+  // with enough particles (sequence.cpp).
+  std::vector<std::string> reference_frames;
   std::string run_path;                // resolved; empty when none
   double fps = 30;
 };
@@ -68,6 +70,7 @@ struct SequenceReport {
   double seconds = 0;            // wall clock, everything
   double render_ms_per_frame = 0;  // reading, drawing and writing one frame
   std::string renderer, display;   // GL_RENDERER; how the EGL display was found
+  std::string reference_frame;     // the frame that fixed particle size, ground, camera
   Camera camera;
   bool camera_fitted = false;
   double particle_radius = 0, particle_spacing = 0, ground_height = 0;

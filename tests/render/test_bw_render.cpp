@@ -98,6 +98,22 @@ TEST(BwRender, RangesRenderedApartMatchOneRun) {
   EXPECT_EQ(slurp(dir.file("all/000002.png")), slurp(dir.file("part/000002.png")));
 }
 
+// A scene with emitters starts nearly empty: particle size, ground and the fitted
+// camera come from the first frame with particles, whatever the range.
+TEST(BwRender, ReferenceFrameIsTheFirstWithParticles) {
+  bw::test::TempDir dir;
+  write_run(dir, {1, 2});
+  bw::FrameData empty;
+  bw::write_frame(empty, bw::frame_file_name(dir.file("frames"), 0));
+  const auto all = run(kTool + " " + dir.file("frames") + " -o " + dir.file("all") + " -v" + kSmall);
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  EXPECT_NE(all.err.find("reference    " + dir.file("frames") + "/000001.h5"), std::string::npos) << all.err;
+  EXPECT_NE(all.err.find("spacing 0.04 m"), std::string::npos) << all.err;
+  const auto part = run(kTool + " " + dir.file("frames") + " -o " + dir.file("part") + " --frames 2 -v" + kSmall);
+  ASSERT_EQ(part.exit_code, 0) << part.err;
+  EXPECT_EQ(slurp(dir.file("all/000002.png")), slurp(dir.file("part/000002.png")));
+}
+
 TEST(BwRender, SceneTablesAndCommandLine) {
   bw::test::TempDir dir;
   write_run(dir, {0});

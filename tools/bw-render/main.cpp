@@ -67,6 +67,7 @@ void print_summary(const Options& o, const bw::render::SequenceJob& job, const b
                r.particle_radius, r.particle_spacing);
   std::fprintf(stderr, "  solids       %zu, fragments %zu, ground at z = %.4g\n", r.solids, r.fragments,
                r.ground_height);
+  std::fprintf(stderr, "  reference    %s (particle size, ground, fitted camera)\n", r.reference_frame.c_str());
 }
 
 }  // namespace
