@@ -1,0 +1,25 @@
+// Scenes for the simulator's tests: tanks sampled from box meshes, scene text, and
+// running a scene through the library.
+#pragma once
+
+#include <string>
+
+#include "common/geometry.h"
+#include "io/run_file.h"
+#include "sim/run.h"
+
+namespace bw::test {
+
+// A closed box tank of n[0] x n[1] x n[2] fluid cells of edge `spacing`, sampled as
+// boundary particles into `path`. The box spans [0, (n + 1/2) spacing] per axis, so
+// that its walls' particles lie at 1/2 spacing and (n + 1/2) spacing, and a fluid
+// block [spacing, k spacing] (k <= n) rests one spacing from them.
+void write_tank(const std::string& path, const Eigen::Vector3i& n, double spacing);
+
+// Outer size of that tank.
+Vec3d tank_size(const Eigen::Vector3i& n, double spacing);
+
+// Runs a scene file through the library into `output` on the default device.
+sim::RunSummary run_scene(const std::string& scene_path, const std::string& output, bool quiet = true);
+
+}  // namespace bw::test

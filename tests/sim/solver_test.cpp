@@ -1,0 +1,208 @@
+// The solver's device kernels against brute force on the host: the grid finds exactly
+// the neighbours an O(N^2) search finds, and Psi_b, densities, pressures and
+// accelerations equal a double-precision O(N^2) evaluation of method.md's formulas.
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "compute/device.h"
+#include "sim/solver.h"
+#include "sim_fixtures.h"
+#include "test_support.h"
+
+namespace bw::sim {
+namespace {
+
+compute::Context& context() {
+  static compute::Context c(compute::choose_device("auto"));
+  return c;
+}
+
+// A scene with a tank (when `tank` is set) and one block, prepared on the host.
+Setup prepare_scene(const test::TempDir& dir, bool tank, const std::string& extra = "") {
+  const double s = 0.01;
+  if (tank) test::write_tank(dir.file("tank.h5"), {8, 6, 8}, s);
+  std::ofstream(dir.file("scene.toml")) << "spacing = 0.01\n[time]\nend = 0.1\n[domain]\nmin = [-0.02, -0.02, -0.02]\n"
+                                           "max = [0.11, 0.09, 0.11]\n[fluid]\nc0 = 20\nmu = 0.1\nmu_b = 0.3\n" << extra
+                                        << "[[fluid.block]]\nmin = [0.01, 0.01, 0.01]\nmax = [0.07, 0.05, 0.06]\n"
+                                        << (tank ? "[[solid]]\nparticles = \"tank.h5\"\n" : "");
+  return prepare(scene::load_scene(dir.file("scene.toml")), 0.1);
+}
+
+TEST(Grid, NeighboursEqualBruteForce) {
+  test::TempDir dir;
+  sim::Setup setup = prepare_scene(dir, false);
+  const Parameters& p = setup.params;
+  // Random particles over the whole domain and a little beyond (those are removed),
+  // plus particles exactly on cell faces and on the domain's lower faces.
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> u(-0.03, 0.12);
+  ParticleArrays fluid;
+  for (int i = 0; i < 4000; ++i) fluid.push(Vec3d(u(rng), u(rng), u(rng)), Vec3d::Zero());
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 4; ++j) fluid.push(p.domain.min + p.h * Vec3d(i, j, 1), Vec3d::Zero());
+  setup.fluid = fluid;
+  setup.params.max_particles = static_cast<std::int64_t>(fluid.size());
+  Solver solver(setup, context());
+  const auto nb = solver.neighbour_lists(256);
+  const std::size_t n = nb.x.size();
+  std::size_t inside = 0;
+  for (std::size_t i = 0; i < fluid.size(); ++i) {
+    const Vec3d q(fluid.x[i], fluid.y[i], fluid.z[i]);
+    const Eigen::Vector3f qf = q.cast<float>();
+    if ((qf.array() >= p.domain.min.cast<float>().array()).all() && (qf.array() < p.domain.max.cast<float>().array()).all())
+      ++inside;
+  }
+  ASSERT_EQ(n, inside) << "particles outside the domain are removed, the others kept";
+  EXPECT_EQ(solver.removed_count(), static_cast<std::int64_t>(fluid.size() - inside));
+  const float h2 = static_cast<float>(p.h * p.h);
+  std::size_t pairs = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::vector<std::uint32_t> expected;
+    for (std::size_t j = 0; j < n; ++j) {
+      const float dx = nb.x[i] - nb.x[j], dy = nb.y[i] - nb.y[j], dz = nb.z[i] - nb.z[j];
+      if (dx * dx + dy * dy + dz * dz < h2) expected.push_back(static_cast<std::uint32_t>(j));
+    }
+    std::vector<std::uint32_t> got = nb.lists[i];
+    std::sort(got.begin(), got.end());
+    ASSERT_EQ(got, expected) << "particle " << i << " at " << nb.x[i] << " " << nb.y[i] << " " << nb.z[i];
+    pairs += expected.size();
+  }
+  test::figure("particles", static_cast<double>(n));
+  test::figure("mean neighbours (brute force)", static_cast<double>(pairs) / n);
+}
+
+// Density, Psi_b and acceleration by O(N^2) double sums of the formulas in
+// shaders/fluid.cl (method.md 1, 2 with the poly6 gradient).
+struct Reference {
+  std::vector<double> psi, rho, p;
+  std::vector<Vec3d> a;
+};
+
+Reference brute_force(const Solver::Snapshot& S, const Parameters& P) {
+  const double h = P.h, h2 = h * h, pi = std::numbers::pi;
+  const double poly6 = 315 / (64 * pi * std::pow(h, 9)), visc = 45 / (pi * std::pow(h, 6));
+  auto w = [&](double r2) { return r2 < h2 ? poly6 * std::pow(h2 - r2, 3) : 0.0; };
+  auto grad = [&](const Vec3d& x) {  // grad W_poly6(x) with respect to the first particle
+    const double r2 = x.squaredNorm();
+    return r2 < h2 ? Vec3d(-6 * poly6 * std::pow(h2 - r2, 2) * x) : Vec3d::Zero();
+  };
+  const std::size_t n = S.x.size(), nb = S.bx.size();
+  auto fx = [&](std::size_t i) { return Vec3d(S.x[i], S.y[i], S.z[i]); };
+  auto bxv = [&](std::size_t b) { return Vec3d(S.bx[b], S.by[b], S.bz[b]); };
+  Reference R;
+  R.psi.resize(nb);
+  for (std::size_t b = 0; b < nb; ++b) {
+    double sum = 0;
+    for (std::size_t k = 0; k < nb; ++k)
+      if (S.bsolid[k] == S.bsolid[b]) sum += w((bxv(b) - bxv(k)).squaredNorm());
+    R.psi[b] = P.rho0 / sum;
+  }
+  R.rho.resize(n);
+  R.p.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    double sf = 0, sb = 0;
+    for (std::size_t j = 0; j < n; ++j) sf += w((fx(i) - fx(j)).squaredNorm());
+    for (std::size_t b = 0; b < nb; ++b) sb += R.psi[b] * w((fx(i) - bxv(b)).squaredNorm());
+    R.rho[i] = P.mass * sf + P.gamma1 * sb;
+    R.p[i] = std::max(0.0, P.k * (std::pow(R.rho[i] / P.rho0, P.gamma) - 1));
+  }
+  R.a.assign(n, P.gravity);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double Pi = R.p[i] / (R.rho[i] * R.rho[i]);
+    const Vec3d vi(S.vx[i], S.vy[i], S.vz[i]);
+    for (std::size_t j = 0; j < n; ++j) {
+      const Vec3d x = fx(i) - fx(j);
+      const double r = x.norm();
+      if (j == i || r >= h) continue;
+      const double Pj = R.p[j] / (R.rho[j] * R.rho[j]);
+      const Vec3d vj(S.vx[j], S.vy[j], S.vz[j]);
+      R.a[i] += -P.mass * (Pi + Pj) * grad(x) + P.mu / R.rho[i] * P.mass * (vj - vi) / R.rho[j] * visc * (h - r);
+    }
+    for (std::size_t b = 0; b < nb; ++b) {
+      const Vec3d x = fx(i) - bxv(b);
+      const double r = x.norm();
+      if (r >= h) continue;
+      R.a[i] += -P.gamma2 * R.psi[b] * (Pi + R.p[i] / (P.rho0 * P.rho0)) * grad(x) +
+                P.mu_b / R.rho[i] * R.psi[b] / P.rho0 * (-vi) * visc * (h - r);
+    }
+  }
+  return R;
+}
+
+TEST(Fluid, DensityAndForcesEqualBruteForce) {
+  test::TempDir dir;
+  sim::Setup setup = prepare_scene(dir, true);
+  // Jitter the block and give it random velocities, so that every term is at work.
+  std::mt19937 rng(7);
+  std::normal_distribution<double> jitter(0, 0.1 * setup.params.spacing), speed(0, 0.5);
+  for (std::size_t i = 0; i < setup.fluid.size(); ++i) {
+    setup.fluid.x[i] += static_cast<float>(jitter(rng));
+    setup.fluid.y[i] += static_cast<float>(jitter(rng));
+    setup.fluid.z[i] += static_cast<float>(jitter(rng));
+    setup.fluid.vx[i] = static_cast<float>(speed(rng));
+    setup.fluid.vy[i] = static_cast<float>(speed(rng));
+    setup.fluid.vz[i] = static_cast<float>(speed(rng));
+  }
+  Solver solver(setup, context());
+  const Solver::Snapshot S = solver.snapshot();
+  const Parameters& P = solver.parameters();
+  ASSERT_EQ(S.x.size(), setup.fluid.size());
+  ASSERT_GT(S.bx.size(), 0u);
+  const Reference R = brute_force(S, P);
+
+  double psi_err = 0, rho_err = 0, p_scale = 0, p_err = 0, a_scale = 0, a_err = 0;
+  for (std::size_t b = 0; b < S.bx.size(); ++b) psi_err = std::max(psi_err, std::abs(S.bpsi[b] / R.psi[b] - 1));
+  for (std::size_t i = 0; i < S.x.size(); ++i) {
+    rho_err = std::max(rho_err, std::abs(S.rho[i] / R.rho[i] - 1));
+    p_scale = std::max(p_scale, R.p[i]);
+    p_err = std::max(p_err, std::abs(S.p[i] - R.p[i]));
+    a_scale = std::max(a_scale, R.a[i].norm());
+    a_err = std::max(a_err, (Vec3d(S.ax[i], S.ay[i], S.az[i]) - R.a[i]).norm());
+  }
+  test::figure("Psi_b, largest relative error", psi_err);
+  test::figure("density, largest relative error", rho_err);
+  test::figure("pressure, largest error / largest pressure", p_err / p_scale);
+  test::figure("acceleration, largest error / largest acceleration", a_err / a_scale);
+  test::figure("largest acceleration", a_scale, "m/s^2");
+  // Float sums of ~30 terms against double: a few units of float rounding, amplified
+  // 7x by the Tait exponent for the pressure.
+  EXPECT_LT(psi_err, 1e-5);
+  EXPECT_LT(rho_err, 1e-5);
+  EXPECT_LT(p_err / p_scale, 1e-3);
+  EXPECT_LT(a_err / a_scale, 1e-3);
+  EXPECT_GT(p_scale, 0) << "the jittered block must be under pressure somewhere";
+}
+
+TEST(Fluid, FullLatticeHasRestDensity) {
+  test::TempDir dir;
+  std::ofstream(dir.file("scene.toml")) << "spacing = 0.01\n[time]\nend = 0.1\n[domain]\nmin = [0, 0, 0]\n"
+                                           "max = [0.2, 0.2, 0.2]\n[fluid]\nc0 = 20\n[[fluid.block]]\n"
+                                           "min = [0.02, 0.02, 0.02]\nmax = [0.12, 0.12, 0.12]\n";
+  const sim::Setup setup = prepare(scene::load_scene(dir.file("scene.toml")), 0.1);
+  Solver solver(setup, context());
+  const Solver::Snapshot S = solver.snapshot();
+  const double h = setup.params.h;
+  // Particles at least h inside the block have a full neighbourhood.
+  std::size_t interior = 0;
+  double worst = 0;
+  for (std::size_t i = 0; i < S.x.size(); ++i) {
+    const Vec3d q(S.x[i], S.y[i], S.z[i]);
+    if ((q.array() > 0.02 + h).all() && (q.array() < 0.12 - h).all()) {
+      ++interior;
+      worst = std::max(worst, std::abs(S.rho[i] / setup.params.rho0 - 1));
+      EXPECT_LT(S.p[i], 1.0f) << "Pa: float rounding of rho only";
+    }
+  }
+  ASSERT_GT(interior, 100u);
+  test::figure("interior particles", static_cast<double>(interior));
+  test::figure("largest |rho/rho0 - 1| inside a full lattice", worst);
+  EXPECT_LT(worst, 1e-5);
+}
+
+}  // namespace
+}  // namespace bw::sim
