@@ -121,7 +121,7 @@ std::string try_display(EGLDisplay display, GlContext::Impl& impl) {
 
 }  // namespace
 
-std::unique_ptr<GlContext> GlContext::create() {
+std::unique_ptr<GlContext> GlContext::create(int device) {
   auto impl = std::make_unique<Impl>();
   const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   std::vector<std::string> tried;
@@ -140,6 +140,14 @@ std::unique_ptr<GlContext> GlContext::create() {
     constexpr EGLint kMaxDevices = 32;
     EGLDeviceEXT devices[kMaxDevices];
     if (query_devices && query_devices(kMaxDevices, devices, &count)) {
+      if (device >= 0) {  // this device and no other
+        if (device >= count) fail_input("--device {}: there is no such EGL device ({} found)", device, count);
+        const std::string why =
+            try_display(get_platform_display(EGL_PLATFORM_DEVICE_EXT, devices[device], nullptr), *impl);
+        if (!why.empty()) fail_run("EGL device {} offers no OpenGL 4.5 core context: {}", device, why);
+        impl->how = fmt::format("EGL device {}", device);
+        return std::unique_ptr<GlContext>(new GlContext(std::move(impl)));
+      }
       for (EGLint i = 0; i < count; ++i) {
         const char* ext = query_string ? query_string(devices[i], EGL_EXTENSIONS) : nullptr;
         if (has_extension(ext, "EGL_MESA_device_software")) {
@@ -159,6 +167,7 @@ std::unique_ptr<GlContext> GlContext::create() {
   } else {
     tried.push_back("EGL_EXT_platform_device: not offered");
   }
+  if (device >= 0) fail_input("--device {}: no EGL devices to choose from ({})", device, tried.back());
 
   // 2. Mesa's surfaceless platform.
   if (get_platform_display && has_extension(client, "EGL_MESA_platform_surfaceless")) {
@@ -174,8 +183,8 @@ std::unique_ptr<GlContext> GlContext::create() {
   }
 
   // 3. Software devices.
-  for (const auto& [device, index] : software) {
-    const std::string why = try_display(get_platform_display(EGL_PLATFORM_DEVICE_EXT, device, nullptr), *impl);
+  for (const auto& [soft, index] : software) {
+    const std::string why = try_display(get_platform_display(EGL_PLATFORM_DEVICE_EXT, soft, nullptr), *impl);
     if (why.empty()) {
       impl->how = fmt::format("EGL device {} (software)", index);
       return std::unique_ptr<GlContext>(new GlContext(std::move(impl)));

@@ -13,9 +13,11 @@ namespace bw::render {
 
 class GlContext {
  public:
-  // Creates the context and makes it current on the calling thread. Throws RunError
-  // (exit code 1) saying what was looked for when no display offers OpenGL 4.5 core.
-  static std::unique_ptr<GlContext> create();
+  // Creates the context and makes it current on the calling thread: on EGL device
+  // `device` when it is >= 0 (InputError when there is no such device), otherwise on
+  // the first display that works, in the order above. Throws RunError (exit code 1)
+  // saying what was looked for when no display offers OpenGL 4.5 core.
+  static std::unique_ptr<GlContext> create(int device = -1);
   ~GlContext();
   GlContext(const GlContext&) = delete;
   GlContext& operator=(const GlContext&) = delete;

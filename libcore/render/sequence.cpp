@@ -240,7 +240,7 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
     report.camera_fitted = true;
   }
 
-  std::unique_ptr<GlContext> context = GlContext::create();
+  std::unique_ptr<GlContext> context = GlContext::create(job.device);
   report.renderer = context->renderer();
   report.display = context->display();
   Renderer renderer(*context, settings);

@@ -35,6 +35,7 @@ struct SequenceJob {
   std::string fragments_path;   // empty: no fragments
   std::string video_path;       // empty: no video
   double fps = 0;               // video frame rate; 0: from the frames' times
+  int device = -1;              // EGL device index; -1: the first display that works
   RenderSettings settings;
 };
 

@@ -227,6 +227,10 @@ TEST(BwRender, BadSceneAndOptions) {
                         "--camera");
   expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --video out.gif"), 2,
                         ".mp4, .mov or .mkv");
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --device gpu"), 2,
+                        "--device");
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --device 99"), 2,
+                        "--device 99");
   expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --fragments " +
                             dir.file("wall.h5")),
                         2, "wall.h5");

@@ -23,6 +23,7 @@ struct Options {
   std::string video;
   double fps = 0;
   double radius = 0;
+  std::string device = "auto";
   bool quiet = false;
   bool verbose = false;
 
@@ -36,6 +37,7 @@ struct Options {
     j.fragments_path = fragments;
     j.video_path = video;
     j.fps = fps;
+    j.device = device == "auto" ? -1 : std::stoi(device);
     j.settings = scene.empty() ? bw::render::RenderSettings{} : bw::render::load_render_settings(scene);
     if (width) j.settings.width = *width;
     if (height) j.settings.height = *height;
@@ -97,6 +99,14 @@ int main(int argc, char** argv) {
   app.add_option("--radius", o.radius, "Particle sphere radius in m (default: estimated)")->check(bw::cli::kPositive);
   app.add_option("--video", o.video, "Also encode a video (.mp4, .mov, .mkv) with ffmpeg");
   app.add_option("--fps", o.fps, "Video frame rate (default: from the frames' times)")->check(bw::cli::kPositive);
+  app.add_option("--device", o.device, "EGL device: auto, or an index (0, 1, ...) to pick one GPU of several")
+      ->check(CLI::Validator(
+          [](std::string& v) -> std::string {
+            if (v == "auto" || (!v.empty() && v.size() < 4 && v.find_first_not_of("0123456789") == std::string::npos))
+              return {};
+            return "'" + v + "' is neither auto nor a device index";
+          },
+          "auto|N"));
   app.add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
   app.add_flag("-v,--verbose", o.verbose, "Print the renderer, camera, particle size and solids used");
 
