@@ -77,6 +77,34 @@ Aabb write_wall_run(const std::string& dir, const Vec3d& translation, bool tank)
   return box;
 }
 
+void add_spray(FrameData& frame, std::uint32_t seed) {
+  const double spacing = std::abs(frame.x.at(1) - frame.x.at(0));
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const Vec3d center(0.15, -0.2, 0.25);
+  auto add = [&](const Vec3d& p) {
+    frame.x.push_back(static_cast<float>(p.x()));
+    frame.y.push_back(static_cast<float>(p.y()));
+    frame.z.push_back(static_cast<float>(p.z()));
+  };
+  // The sheet: radius 0.35 + 0.3 h at height h in [0, 0.3].
+  for (double h = 0; h < 0.3; h += spacing) {
+    const double r = 0.35 + 0.3 * h;
+    const int around = static_cast<int>(2 * 3.14159265358979 * r / spacing);
+    for (int k = 0; k < around; ++k) {
+      const double a = 2 * 3.14159265358979 * k / around;
+      add(center + Vec3d(r * std::cos(a), r * std::sin(a), h));
+    }
+  }
+  // Drops: clusters of one to four particles above the rim.
+  for (int d = 0; d < 600; ++d) {
+    const double a = 2 * 3.14159265358979 * u(rng), r = 0.4 + 0.35 * u(rng), h = 0.3 + 0.35 * u(rng);
+    const Vec3d p = center + Vec3d(r * std::cos(a), r * std::sin(a), h);
+    const int n = 1 + static_cast<int>(4 * u(rng));
+    for (int k = 0; k < n; ++k) add(p + spacing * Vec3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
+  }
+}
+
 void break_wall(const std::string& dir, FrameData& frame) {
   RunRecord run = read_run(dir + "/run.h5");
   run.solids[0].kind = "breakable";

@@ -31,6 +31,11 @@ FrameData splash_frame(std::size_t particles, int frame_number = 0);
 // at 0.4 m, walls 5 cm), in `dir`/tank.h5. Returns the wall's bounds in the world.
 Aabb write_wall_run(const std::string& dir, const Vec3d& translation = Vec3d::Zero(), bool tank = false);
 
+// A crown around (0.15, -0.2, 0.25): a thin conical sheet of particles one spacing
+// thick rising from the pool, and drops of one to a few particles flung out of it
+// (seeded), at the spacing of the frame's particles.
+void add_spray(FrameData& frame, std::uint32_t seed);
+
 // Turns the wall of write_wall_run into a breakable solid (body 0) cut into three
 // fragments along x (bodies 1, 2, 3, written to `dir`/fragments.h5), and gives the
 // frame their poses: flung forward and up, each turned a little more.
