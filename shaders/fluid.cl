@@ -18,7 +18,8 @@
 static inline bool bw_finite(float v) { return (as_uint(v) & 0x7f800000u) != 0x7f800000u; }
 
 // Akinci's Psi_b = rho0 / sum_k W(x_bk), the sum over the boundary particles k of the
-// same solid (including b): the fluid mass a boundary particle stands for.
+// same solid (including b): the fluid mass a boundary particle stands for. W is the
+// boundary kernel, W_spiky.
 __kernel void boundary_psi(SimParams P, uint nb, __global const uint* bstart, __global const float* bx,
                            __global const float* by, __global const float* bz, __global const uint* bsolid,
                            __global float* bpsi) {
@@ -38,20 +39,23 @@ __kernel void boundary_psi(SimParams P, uint nb, __global const uint* bstart, __
       for (uint j = s; j < e; ++j) {
         if (bsolid[j] != solid) continue;
         const float dx = xi - bx[j], dy = yi - by[j], dz = zi - bz[j];
-        sum += bw_poly6(dx * dx + dy * dy + dz * dz, P.h2, P.poly6);
+        const float r = sqrt(dx * dx + dy * dy + dz * dz);
+        if (r < P.h) sum += P.spiky * (P.h - r) * (P.h - r) * (P.h - r);
       }
     }
   }
   bpsi[i] = P.rho0 / sum;
 }
 
-// rho_i = m sum_j W(x_ij) + gamma1 sum_b Psi_b W(x_ib), then the Tait pressure, the
-// per-particle factors the force kernel reads: pterm = p / rho^2, vol = 1 / rho.
+// rho_i = m sum_j W_poly6(x_ij) + gamma1 sum_b Psi_b W_spiky(x_ib), then the Tait pressure, the
+// per-particle factors the force kernel reads: pterm = p / rho^2, vol = 1 / rho, and
+// the boundary fraction phi = sum_b Psi_b W_spiky(x_ib) / rho0 (1 on a wall's layer of
+// particles, 0.15 one spacing from a flat wall, 0 far from walls).
 __kernel void fluid_density(SimParams P, __global const uint* start, __global const float* x,
                             __global const float* y, __global const float* z, __global const uint* bstart,
                             __global const float* bx, __global const float* by, __global const float* bz,
                             __global const float* bpsi, __global float* rho, __global float* pres,
-                            __global float* pterm, __global float* vol) {
+                            __global float* pterm, __global float* vol, __global float* phi) {
   const uint i = get_global_id(0);
   if (i >= start[P.ncells]) return;
   const float xi = x[i], yi = y[i], zi = z[i];
@@ -64,45 +68,52 @@ __kernel void fluid_density(SimParams P, __global const uint* start, __global co
   for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
     for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
       const int row = bw_cell_index(0, gy, gz, P.nx, P.ny);
-      const uint s = start[row + x0], e = start[row + x1 + 1];
-      for (uint j = s; j < e; j += BW_VW) {
+      const int s = (int)start[row + x0], e = (int)start[row + x1 + 1];
+      for (int j = s; j < e; j += BW_VW) {
         const vfloat dx = xi - VLOAD(x + j), dy = yi - VLOAD(y + j), dz = zi - VLOAD(z + j);
         const vfloat r2 = dx * dx + dy * dy + dz * dz;
         const vfloat d = h2 - r2;
         wf += select((vfloat)0.0f, d * d * d, (r2 < h2) & VIN_ROW(j, e));
       }
-      const uint bs = bstart[row + x0], be = bstart[row + x1 + 1];
-      for (uint j = bs; j < be; j += BW_VW) {
+      const int bs = (int)bstart[row + x0], be = (int)bstart[row + x1 + 1];
+      for (int j = bs; j < be; j += BW_VW) {
         const vfloat dx = xi - VLOAD(bx + j), dy = yi - VLOAD(by + j), dz = zi - VLOAD(bz + j);
         const vfloat r2 = dx * dx + dy * dy + dz * dz;
-        const vfloat d = h2 - r2;
-        wb += select((vfloat)0.0f, VLOAD(bpsi + j) * d * d * d, (r2 < h2) & VIN_ROW(j, be));
+        const vfloat q = P.h - sqrt(r2);
+        wb += select((vfloat)0.0f, VLOAD(bpsi + j) * q * q * q, (r2 < h2) & VIN_ROW(j, be));
       }
     }
   }
-  const float r = P.poly6 * (P.mass * VSUM(wf) + P.gamma1 * VSUM(wb));
-  const float p = bw_tait(r, P.rho0, P.stiffness, P.gamma);
+  const float boundary = P.spiky * VSUM(wb);
+  const float r = P.poly6 * P.mass * VSUM(wf) + P.gamma1 * boundary;
+  const float p = bw_tait(r, P.rho0, P.stiffness, P.gamma, P.gamma_int);
   rho[i] = r;
   pres[i] = p;
   pterm[i] = p / (r * r);
   vol[i] = 1.0f / r;
+  phi[i] = boundary / P.rho0;
 }
 
-// Accelerations (method.md 1 and 2.3; gradients of the density kernel W = W_poly6,
-// docs/scene.md "Physics"):
-//   pressure   -m sum_j (p_i/rho_i^2 + p_j/rho_j^2) grad W(x_ij)
+// Accelerations (method.md 1 and 2.3, each pressure force with the gradient of the
+// kernel that weighs the pair in the density, docs/scene.md "Physics"):
+//   pressure   -m sum_j (p_i/rho_i^2 + p_j/rho_j^2) grad W_poly6(x_ij)
 //   viscosity  (mu/rho_i) sum_j m (v_j - v_i)/rho_j lap W_visc(x_ij)
-//   boundary   -gamma2 sum_b Psi_b (p_i/rho_i^2 + p_i/rho0^2) grad W(x_ib)
+//   boundary   -gamma2 sum_b Psi_b (p_i/rho_i^2 + p_i/rho0^2) grad W_spiky(x_ib)
 //   friction   (mu_b/rho_i) sum_b (Psi_b/rho0) (v_b - v_i) lap W_visc(x_ib)
 //   gravity    g
-// with grad W(x) = -6 poly6 (h^2 - r^2)^2 x and lap W_visc = visc (h - r).
+// with grad W_poly6(x) = -6 poly6 (h^2 - r^2)^2 x, grad W_spiky(x) = -3 spiky
+// (h - r)^2 x / r and lap W_visc = visc (h - r). A particle in contact with a wall
+// (phi > contact) also gets the wall's normal n, pointing from the wall to it, for
+// the contact rule of fluid_integrate; other particles get n = 0.
 __kernel void fluid_forces(SimParams P, __global const uint* start, __global const float* x,
                            __global const float* y, __global const float* z, __global const float* vx,
                            __global const float* vy, __global const float* vz, __global const float* rho,
-                           __global const float* pterm, __global const float* vol, __global const uint* bstart, __global const float* bx, __global const float* by,
+                           __global const float* pterm, __global const float* vol, __global const float* phi,
+                           __global const uint* bstart, __global const float* bx, __global const float* by,
                            __global const float* bz, __global const float* bpsi, __global const float* bvx,
                            __global const float* bvy, __global const float* bvz, __global float* ax,
-                           __global float* ay, __global float* az) {
+                           __global float* ay, __global float* az, __global float* nx, __global float* ny,
+                           __global float* nz) {
   const uint i = get_global_id(0);
   if (i >= start[P.ncells]) return;
   const float xi = x[i], yi = y[i], zi = z[i];
@@ -117,7 +128,7 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
   const float min_r2 = h2 * BW_MIN_R2_FRACTION;
   vfloat fx = 0.0f, fy = 0.0f, fz = 0.0f;    // sum (Pi + Pj) (h^2 - r^2)^2 x_ij
   vfloat lx = 0.0f, ly = 0.0f, lz = 0.0f;    // sum (v_j - v_i) (h - r) / rho_j
-  vfloat bfx = 0.0f, bfy = 0.0f, bfz = 0.0f; // sum Psi_b (h^2 - r^2)^2 x_ib
+  vfloat bfx = 0.0f, bfy = 0.0f, bfz = 0.0f; // sum Psi_b (h - r)^2 / r x_ib
   vfloat blx = 0.0f, bly = 0.0f, blz = 0.0f; // sum Psi_b (v_b - v_i) (h - r)
   for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
     for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
@@ -143,9 +154,10 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
         const vfloat r2 = dx * dx + dy * dy + dz * dz;
         const vint ok = (r2 < h2) & (r2 > min_r2) & VIN_ROW(j, be);
         const vfloat psi = VLOAD(bpsi + j);
-        const vfloat d = h2 - r2;
-        const vfloat c = select((vfloat)0.0f, psi * d * d, ok);
-        const vfloat w = select((vfloat)0.0f, psi * (h - sqrt(r2)), ok);
+        const vfloat ir = rsqrt(fmax(r2, min_r2));
+        const vfloat q = h - r2 * ir;
+        const vfloat c = select((vfloat)0.0f, psi * q * q * ir, ok);
+        const vfloat w = select((vfloat)0.0f, psi * q, ok);
         bfx += c * dx;
         bfy += c * dy;
         bfz += c * dz;
@@ -155,42 +167,41 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
       }
     }
   }
-  // -grad W = 6 poly6 (h^2 - r^2)^2 x: the sums above times 6 poly6 point away from
-  // the neighbours, so every pressure-like term below is repulsive.
-  const float g6 = 6.0f * P.poly6;
-  const float kp = P.mass * g6;
+  // -grad W is 6 poly6 (h^2 - r^2)^2 x and 3 spiky (h - r)^2 x / r: the sums above
+  // point away from the neighbours, so every pressure term below is repulsive.
+  const float kp = P.mass * 6.0f * P.poly6;
   const float kv = P.mu * P.mass * P.visc / rhoi;
-  const float kbp = g6 * P.gamma2 * (pti + pti * rhoi * rhoi / (P.rho0 * P.rho0));
+  const float kbp = 3.0f * P.spiky * P.gamma2 * (pti + pti * rhoi * rhoi / (P.rho0 * P.rho0));
   const float kbv = P.mu_b * P.visc / (rhoi * P.rho0);
   ax[i] = kp * VSUM(fx) + kv * VSUM(lx) + kbp * VSUM(bfx) + kbv * VSUM(blx) + P.gx;
   ay[i] = kp * VSUM(fy) + kv * VSUM(ly) + kbp * VSUM(bfy) + kbv * VSUM(bly) + P.gy;
   az[i] = kp * VSUM(fz) + kv * VSUM(lz) + kbp * VSUM(bfz) + kbv * VSUM(blz) + P.gz;
+  // The sum of Psi_b grad W_spiky points from the walls to the particle.
+  const float wx = VSUM(bfx), wy = VSUM(bfy), wz = VSUM(bfz);
+  const float wn = sqrt(wx * wx + wy * wy + wz * wz);
+  const bool contact = phi[i] > P.contact && wn > 0.0f;
+  nx[i] = contact ? wx / wn : 0.0f;
+  ny[i] = contact ? wy / wn : 0.0f;
+  nz[i] = contact ? wz / wn : 0.0f;
 }
 
-// Symplectic Euler: v += a dt, then x += v dt with the new velocity.
+// Symplectic Euler: v += a dt, then x += v dt with the new velocity. Contact: a
+// particle touching a wall (normal n != 0) loses the part of its velocity that goes
+// into the wall, so that no step carries it through the wall's single layer of
+// particles (a fast splash could otherwise cross it between two steps).
 __kernel void fluid_integrate(uint n, float dt, __global float* x, __global float* y, __global float* z,
                               __global float* vx, __global float* vy, __global float* vz, __global const float* ax,
-                              __global const float* ay, __global const float* az) {
+                              __global const float* ay, __global const float* az, __global const float* nx,
+                              __global const float* ny, __global const float* nz) {
   const uint i = get_global_id(0);
   if (i >= n) return;
-  const float ux = vx[i] + ax[i] * dt, uy = vy[i] + ay[i] * dt, uz = vz[i] + az[i] * dt;
-  vx[i] = ux;
-  vy[i] = uy;
-  vz[i] = uz;
-  x[i] += ux * dt;
-  y[i] += uy * dt;
-  z[i] += uz * dt;
-}
-
-// Damped motion without gravity, to relax the initial fluid against the solids:
-// v = (v + a dt) damping, x += v dt.
-__kernel void fluid_relax(uint n, float dt, float damping, __global float* x, __global float* y, __global float* z,
-                          __global float* vx, __global float* vy, __global float* vz, __global const float* ax,
-                          __global const float* ay, __global const float* az) {
-  const uint i = get_global_id(0);
-  if (i >= n) return;
-  const float ux = (vx[i] + ax[i] * dt) * damping, uy = (vy[i] + ay[i] * dt) * damping,
-              uz = (vz[i] + az[i] * dt) * damping;
+  float ux = vx[i] + ax[i] * dt, uy = vy[i] + ay[i] * dt, uz = vz[i] + az[i] * dt;
+  const float into = ux * nx[i] + uy * ny[i] + uz * nz[i];
+  if (into < 0.0f) {
+    ux -= into * nx[i];
+    uy -= into * ny[i];
+    uz -= into * nz[i];
+  }
   vx[i] = ux;
   vy[i] = uy;
   vz[i] = uz;

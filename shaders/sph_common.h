@@ -5,8 +5,10 @@
 // that differ between compilers), so their layout is the same on host and device; they
 // are passed to kernels by value. The kernel functions follow method.md section 1:
 // Mueller et al. 2003's poly6, spiky and viscosity kernels, all zero beyond the
-// support radius h. The solver uses poly6 for the density and its gradient for the
-// pressure forces (docs/scene.md, "Physics"), the viscosity Laplacian for friction.
+// support radius h. The solver (docs/scene.md, "Physics") weighs fluid neighbours with
+// poly6 and boundary particles with spiky, and takes each pressure force from the
+// gradient of the kernel that weighs the pair in the density; viscosity and friction
+// use the viscosity kernel's Laplacian.
 #ifndef BW_SPH_COMMON_H
 #define BW_SPH_COMMON_H
 
@@ -30,17 +32,20 @@ typedef std::uint32_t bw_uint;
 typedef struct {
   // kernel support radius h (m), h^2, and the constant factors of the three kernels
   float h, h2;
-  float poly6;      // 315 / (64 pi h^9)
+  float poly6;      // 315 / (64 pi h^9): W_poly6 = poly6 (h^2 - r^2)^3
+  float spiky;      // 15 / (pi h^6): W_spiky = spiky (h - r)^3
   float visc;       // 45 / (pi h^6): lap W_visc = visc (h - r)
   // fluid
   float mass;       // particle mass (kg): a particle inside a full lattice has rho0
   float rho0;       // rest density (kg/m^3)
   float stiffness;  // Tait k (Pa)
   float gamma;      // Tait exponent
+  int gamma_int;    // gamma when it is a whole number (the usual 7), else 0
   float mu;         // viscosity (Pa s)
   float mu_b;       // boundary friction (Pa s)
   float gamma1;     // weight of the boundary term in the density
   float gamma2;     // weight of the boundary pressure force
+  float contact;    // boundary fraction above which a particle is in contact with a wall
   float gx, gy, gz; // gravity (m/s^2)
   // grid: cubic cells of edge `cell` from `origin`; the domain is the grid's box
   float ox, oy, oz;
@@ -119,9 +124,22 @@ BW_FN float bw_visc(float r, float h) {
   return 15.0f / (2.0f * BW_PI_F * h * h * h) * (-0.5f * a * a * a + a * a + 0.5f / a - 1.0f);
 }
 
+// x^n for a whole n >= 1 by repeated squaring: much cheaper than pow on CPUs.
+BW_FN float bw_powi(float x, int n) {
+  float result = 1.0f;
+  while (n > 0) {
+    if (n & 1) result *= x;
+    x *= x;
+    n >>= 1;
+  }
+  return result;
+}
+
 // Tait equation of state, negative pressures clamped to 0 (method.md 1).
-BW_FN float bw_tait(float rho, float rho0, float k, float gamma) {
-  const float p = k * (BW_POW(rho / rho0, gamma) - 1.0f);
+// gamma_int > 0: gamma is that whole number.
+BW_FN float bw_tait(float rho, float rho0, float k, float gamma, int gamma_int) {
+  const float a = rho / rho0;
+  const float p = k * ((gamma_int > 0 ? bw_powi(a, gamma_int) : BW_POW(a, gamma)) - 1.0f);
   return p > 0.0f ? p : 0.0f;
 }
 

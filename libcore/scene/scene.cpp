@@ -334,8 +334,10 @@ void read_fluid(Reader& top, Scene& s) {
   non_negative(r, "mu", f.mu);
   f.mu_b = r.number("mu_b", f.mu);
   non_negative(r, "mu_b", f.mu_b);
-  f.gamma1 = r.number("gamma1", f.gamma1);
-  non_negative(r, "gamma1", f.gamma1);
+  if (r.has("gamma1")) {
+    f.gamma1 = r.number("gamma1", f.gamma1);
+    non_negative(r, "gamma1", f.gamma1);
+  }
   if (r.has("gamma2")) {
     f.gamma2 = r.number("gamma2", f.gamma2);
     non_negative(r, "gamma2", f.gamma2);

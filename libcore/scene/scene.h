@@ -35,7 +35,8 @@ struct FluidSettings {
   double gamma = 7;
   double mu = 0.05;            // viscosity (Pa s)
   double mu_b = 0.05;          // boundary friction (Pa s); default: mu
-  double gamma1 = 1;           // weight of the boundary term in the density
+  double gamma1 = -1;          // weight of the boundary term in the density; < 0: calibrated
+                               // so that fluid one spacing from a flat wall has rho0
   double gamma2 = -1;          // weight of the boundary pressure force; < 0: gamma1 / 2
   std::int64_t max_particles = 0;  // MFP; 0 = what the blocks and emitters need
 };

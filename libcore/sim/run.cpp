@@ -21,10 +21,6 @@ namespace {
 
 // Frame f is at f / frame_rate; the last one at or before the end (up to rounding).
 constexpr double kFrameSlack = 1e-9;
-// Relaxing the initial fluid against the walls stops below this compression
-// (max(0, rho/rho0 - 1)) or after this many steps (a full closed box cannot relax).
-constexpr double kRelaxTolerance = 0.005;
-constexpr int kRelaxMaxSteps = 500;
 
 int last_frame(double end_time, double frame_rate) {
   return static_cast<int>(std::floor(end_time * frame_rate + kFrameSlack));
@@ -125,13 +121,7 @@ RunSummary Simulation::run() {
                        {"max_particles", static_cast<double>(p.max_particles)},
                        {"boundary_particles", static_cast<double>(solver.boundary_count())}};
 
-  // Let the fluid settle against the walls before t = 0 (Solver::relax).
-  const RelaxInfo relaxed = solver.relax(kRelaxMaxSteps, kRelaxTolerance);
-  record.parameters.push_back({"relax_steps", static_cast<double>(relaxed.steps)});
-  record.parameters.push_back({"relax_largest_move", relaxed.largest_move});
-
   RunSummary sum;
-  sum.relax = relaxed;
   sum.device = record.device;
   sum.boundary = solver.boundary_count();
   sum.capacity = solver.capacity();
@@ -235,10 +225,7 @@ std::string format_summary(const RunSummary& r) {
   std::string out;
   out += fmt::format("  frames       {} ({:.4g} s simulated) in {}\n", r.frames, r.simulated,
                      human_duration(r.wall_seconds));
-  out += fmt::format("  steps        {}, dt {:.3g} .. {:.3g} s (after {} relaxation steps: compression {:.2f}% -> "
-                     "{:.2f}%, largest move {:.3g} m)\n",
-                     r.steps, r.dt_min, r.dt_max, r.relax.steps, 100 * r.relax.density_error_before,
-                     100 * r.relax.density_error_after, r.relax.largest_move);
+  out += fmt::format("  steps        {}, dt {:.3g} .. {:.3g} s\n", r.steps, r.dt_min, r.dt_max);
   out += fmt::format("  throughput   {} particle-steps/s, {:.3g} s of wall time per simulated second\n",
                      human_count(r.wall_seconds > 0 ? r.particle_steps / r.wall_seconds : 0),
                      r.simulated > 0 ? r.wall_seconds / r.simulated : 0);

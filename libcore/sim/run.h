@@ -42,7 +42,6 @@ struct RunSummary {
   std::uint64_t device_bytes = 0;
   std::int64_t capacity = 0;
   std::string device;
-  RelaxInfo relax;                     // relaxing the initial fluid against the walls
 };
 
 class Simulation {

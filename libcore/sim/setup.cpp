@@ -28,6 +28,12 @@ constexpr std::int64_t kMaxGridCells = std::int64_t{1} << 30;
 // spacings (up to rounding) gives n points.
 constexpr double kLatticeSlack = 1e-9;
 
+double spiky(double r2, double h) {
+  const double r = std::sqrt(r2);
+  if (r >= h) return 0;
+  return 15.0 / (std::numbers::pi * std::pow(h, 6)) * (h - r) * (h - r) * (h - r);
+}
+
 double poly6(double r2, double h) {
   const double h2 = h * h;
   if (r2 >= h2) return 0;
@@ -58,6 +64,25 @@ double lattice_kernel_sum(double spacing, double h) {
     for (int j = -reach; j <= reach; ++j)
       for (int i = -reach; i <= reach; ++i) sum += poly6(spacing * spacing * (i * i + j * j + k * k), h);
   return sum;
+}
+
+double calibrated_gamma1(double spacing, double h) {
+  // Kernel sums over the lattice layer k spacings away (k = 0: the particle's own).
+  const int reach = static_cast<int>(std::ceil(h / spacing));
+  auto layer = [&](auto kernel, int k) {
+    double sum = 0;
+    for (int j = -reach; j <= reach; ++j)
+      for (int i = -reach; i <= reach; ++i) sum += kernel(spacing * spacing * (i * i + j * j + k * k), h);
+    return sum;
+  };
+  // A particle one spacing from the wall misses the fluid layers 1, 2, ... (mass
+  // m = rho0 / full lattice sum each); the wall, layer 1, gives gamma1 Psi_b per
+  // particle with Psi_b = rho0 / (its own layer's spiky sum).
+  double missing = 0;
+  for (int k = 1; k <= reach; ++k) missing += layer(poly6, k);
+  missing /= lattice_kernel_sum(spacing, h);
+  const double wall = layer(spiky, 1) / layer(spiky, 0);
+  return missing / wall;
 }
 
 void ParticleArrays::push(const Vec3d& p, const Vec3d& v) {
@@ -112,7 +137,7 @@ Setup prepare(const scene::Scene& s, double end_time) {
   p.gamma = f.gamma;
   p.mu = f.mu;
   p.mu_b = f.mu_b;
-  p.gamma1 = f.gamma1;
+  p.gamma1 = f.gamma1 >= 0 ? f.gamma1 : calibrated_gamma1(p.spacing, p.h);
   p.gamma2 = f.gamma2 >= 0 ? f.gamma2 : 0.5 * p.gamma1;
   p.gravity = s.gravity;
   p.end_time = end_time;

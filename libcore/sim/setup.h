@@ -19,6 +19,14 @@ namespace bw::sim {
 // particle at a lattice point, the particle itself included (computed in double).
 double lattice_kernel_sum(double spacing, double h);
 
+// The default boundary weight gamma1: the value for which a fluid particle one
+// spacing from a flat wall (one layer of boundary particles at the same spacing,
+// weighed with W_spiky and Akinci's Psi_b) has exactly rho0, like a particle inside
+// the fluid, so that fluid placed next to walls starts at rest. 1.30 at h = 2
+// spacings. (With W_poly6 and gamma1 = 1 that particle would start 12% compressed,
+// 25% in a corner, which a stiff fluid turns into a blast at t = 0.)
+double calibrated_gamma1(double spacing, double h);
+
 struct Parameters {
   double spacing = 0;
   double h = 0;                 // support radius

@@ -30,6 +30,12 @@ constexpr std::uint32_t kReduceChunk = 512;
 constexpr std::uint32_t kReduceBlocksPerUnit = 64;
 // Largest grid (cells): the cell index is a 32-bit key and start[] has one entry each.
 constexpr std::uint64_t kMaxCells = std::uint64_t{1} << 30;
+// A fluid particle is in contact with a wall when its boundary fraction phi (1 on a
+// wall's layer of particles) exceeds this: about 0.6 spacings from a flat wall, more
+// than the CFL step (at most 0.4 spacings at speeds up to c0), so no step can cross
+// the layer unnoticed; particles resting one spacing from walls (phi 0.15, 0.35 in
+// corners) are not in contact.
+constexpr double kContactFraction = 0.4;
 // A step shorter than this fraction of the proposed dt before a frame time would be
 // a sliver: the last two steps share the remaining time instead.
 constexpr double kSplitBeforeFrame = 2.0;
@@ -47,19 +53,18 @@ struct Solver::Impl {
 
   compute::Program grid_program, fluid_program;
   Kernel fluid_keys, boundary_keys, cell_starts, reorder, gather_float, gather_uint, neighbour_lists;
-  Kernel psi, density, forces, integrate, relax, step_reduce, frame_reduce, emit;
+  Kernel psi, density, forces, integrate, step_reduce, frame_reduce, emit;
   std::unique_ptr<compute::RadixSort> sort;
 
   // fluid
   std::array<Buffer, 2> x, y, z, vx, vy, vz, id;
   int front = 0;
   Buffer keys, values, keys_tmp, values_tmp;
-  Buffer rho, pres, pterm, vol, ax, ay, az, start;
+  Buffer rho, pres, pterm, vol, phi, ax, ay, az, nx, ny, nz, start;
   // boundary
   Buffer bx, by, bz, bpsi, bvx, bvy, bvz, bsolid, bstart;
   std::uint32_t nb = 0;
   ParticleArrays boundary_host;
-  ParticleArrays initial;       // the blocks' particles by id (velocities for relax())
   // reductions
   Buffer step_out, frame_out;
   // emitters
@@ -109,7 +114,7 @@ struct Solver::Impl {
     }
     cell_starts.args(n, ncells, keys, start);
     ctx.launch(cell_starts, std::size_t(n) + 1);
-    density.args(P, start, x[front], y[front], z[front], bstart, bx, by, bz, bpsi, rho, pres, pterm, vol);
+    density.args(P, start, x[front], y[front], z[front], bstart, bx, by, bz, bpsi, rho, pres, pterm, vol, phi);
     ctx.launch(density, n);
     grid_valid = true;
   }
@@ -200,15 +205,18 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   P.h = static_cast<float>(p.h);
   P.h2 = static_cast<float>(p.h * p.h);
   P.poly6 = static_cast<float>(315.0 / (64.0 * pi * std::pow(p.h, 9)));
+  P.spiky = static_cast<float>(15.0 / (pi * std::pow(p.h, 6)));
   P.visc = static_cast<float>(45.0 / (pi * std::pow(p.h, 6)));
   P.mass = static_cast<float>(p.mass);
   P.rho0 = static_cast<float>(p.rho0);
   P.stiffness = static_cast<float>(p.k);
   P.gamma = static_cast<float>(p.gamma);
+  P.gamma_int = (p.gamma == std::floor(p.gamma) && p.gamma <= 64) ? static_cast<int>(p.gamma) : 0;
   P.mu = static_cast<float>(p.mu);
   P.mu_b = static_cast<float>(p.mu_b);
   P.gamma1 = static_cast<float>(p.gamma1);
   P.gamma2 = static_cast<float>(p.gamma2);
+  P.contact = static_cast<float>(kContactFraction);
   P.gx = static_cast<float>(p.gravity.x());
   P.gy = static_cast<float>(p.gravity.y());
   P.gz = static_cast<float>(p.gravity.z());
@@ -226,7 +234,7 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   P.ncells = static_cast<int>(s.ncells);
 
   // Refuse what cannot fit before allocating anything.
-  const std::uint64_t per_particle = 25 * sizeof(float);
+  const std::uint64_t per_particle = 29 * sizeof(float);
   const std::uint64_t nb_all = setup.boundary.particles.size();
   const std::uint64_t estimate = (s.capacity + kPad) * per_particle + 2 * (cells + 1) * sizeof(std::uint32_t) +
                                  (nb_all + kPad) * 12 * sizeof(float);
@@ -250,7 +258,6 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   s.density = s.fluid_program.kernel("fluid_density");
   s.forces = s.fluid_program.kernel("fluid_forces");
   s.integrate = s.fluid_program.kernel("fluid_integrate");
-  s.relax = s.fluid_program.kernel("fluid_relax");
   s.step_reduce = s.fluid_program.kernel("fluid_step_reduce");
   s.frame_reduce = s.fluid_program.kernel("fluid_frame_reduce");
   s.emit = s.fluid_program.kernel("fluid_emit");
@@ -275,6 +282,10 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   s.pres = s.floats(cap, "fluid p");
   s.pterm = s.floats(cap, "fluid p/rho^2");
   s.vol = s.floats(cap, "fluid 1/rho");
+  s.phi = s.floats(cap, "fluid boundary fraction");
+  s.nx = s.floats(cap, "fluid wall normal x");
+  s.ny = s.floats(cap, "fluid wall normal y");
+  s.nz = s.floats(cap, "fluid wall normal z");
   s.ax = s.floats(cap, "fluid ax");
   s.ay = s.floats(cap, "fluid ay");
   s.az = s.floats(cap, "fluid az");
@@ -298,7 +309,6 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<std::uint32_t>(i);
   context.write_vector(s.id[0], ids);
   s.next_id = s.n;
-  s.initial = setup.fluid;
 
   // Boundary: upload, sort by cell once (static), then Psi_b.
   const BoundarySet& bset = setup.boundary;
@@ -370,8 +380,8 @@ StepInfo Solver::step(double t_target) {
   if (!(t_target > s.t)) fail_run("step to t = {} requested at t = {}", t_target, s.t);
   s.ensure_grid();
   const int f = s.front;
-  s.forces.args(s.P, s.start, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.rho, s.pterm, s.vol, s.bstart, s.bx,
-                s.by, s.bz, s.bpsi, s.bvx, s.bvy, s.bvz, s.ax, s.ay, s.az);
+  s.forces.args(s.P, s.start, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.rho, s.pterm, s.vol, s.phi, s.bstart,
+                s.bx, s.by, s.bz, s.bpsi, s.bvx, s.bvy, s.bvz, s.ax, s.ay, s.az, s.nx, s.ny, s.nz);
   s.ctx.launch(s.forces, s.n);
 
   std::uint32_t chunk = 0;
@@ -412,7 +422,8 @@ StepInfo Solver::step(double t_target) {
     dt = 0.5 * remaining;
   }
 
-  s.integrate.args(s.n, static_cast<float>(dt), s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.ax, s.ay, s.az);
+  s.integrate.args(s.n, static_cast<float>(dt), s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.ax, s.ay, s.az,
+                   s.nx, s.ny, s.nz);
   s.ctx.launch(s.integrate, s.n);
   s.grid_valid = false;
   s.t = lands ? t_target : s.t + dt;
@@ -423,55 +434,6 @@ StepInfo Solver::step(double t_target) {
   info.max_speed = vmax;
   info.max_acceleration = amax;
   info.emitted = s.emit_after_step();
-  return info;
-}
-
-RelaxInfo Solver::relax(int max_steps, double tolerance) {
-  Impl& s = *impl_;
-  RelaxInfo info;
-  if (s.n == 0 || s.nb == 0 || s.steps > 0) return info;
-  // Damping per step: kills the relaxation's sound waves within a few dozen steps.
-  constexpr float kDamping = 0.9f;
-  const Parameters& p = s.params;
-  SimParams still = s.P;
-  still.gx = still.gy = still.gz = 0;
-  const std::vector<float> zeros(s.n, 0.0f);
-  for (Buffer* v : {&s.vx[s.front], &s.vy[s.front], &s.vz[s.front]}) s.ctx.write_vector(*v, zeros);
-  info.density_error_before = stats().density_error_max;
-  info.density_error_after = info.density_error_before;
-  const double dt = p.cfl * p.h / p.c0;
-  while (info.steps < max_steps && info.density_error_after > tolerance) {
-    s.ensure_grid();
-    const int f = s.front;
-    s.forces.args(still, s.start, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.rho, s.pterm, s.vol, s.bstart,
-                  s.bx, s.by, s.bz, s.bpsi, s.bvx, s.bvy, s.bvz, s.ax, s.ay, s.az);
-    s.ctx.launch(s.forces, s.n);
-    s.relax.args(s.n, static_cast<float>(dt), kDamping, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.ax, s.ay,
-                 s.az);
-    s.ctx.launch(s.relax, s.n);
-    s.grid_valid = false;
-    ++info.steps;
-    info.density_error_after = stats().density_error_max;
-  }
-  // Back to the initial velocities, by particle id; measure how far particles moved.
-  s.ensure_grid();
-  s.settle_count();
-  const int f = s.front;
-  const auto ids = s.ctx.read_vector<std::uint32_t>(s.id[f], s.n);
-  const auto px = s.ctx.read_vector<float>(s.x[f], s.n), py = s.ctx.read_vector<float>(s.y[f], s.n),
-             pz = s.ctx.read_vector<float>(s.z[f], s.n);
-  std::vector<float> ux(s.n), uy(s.n), uz(s.n);
-  for (std::size_t i = 0; i < s.n; ++i) {
-    const std::uint32_t k = ids[i];
-    ux[i] = s.initial.vx[k];
-    uy[i] = s.initial.vy[k];
-    uz[i] = s.initial.vz[k];
-    const double dx = px[i] - s.initial.x[k], dy = py[i] - s.initial.y[k], dz = pz[i] - s.initial.z[k];
-    info.largest_move = std::max(info.largest_move, std::sqrt(dx * dx + dy * dy + dz * dz));
-  }
-  s.ctx.write_vector(s.vx[f], ux);
-  s.ctx.write_vector(s.vy[f], uy);
-  s.ctx.write_vector(s.vz[f], uz);
   return info;
 }
 
@@ -489,8 +451,8 @@ std::uint64_t Solver::device_bytes() const {
   for (int k = 0; k < 2; ++k)
     total += s.x[k].bytes() + s.y[k].bytes() + s.z[k].bytes() + s.vx[k].bytes() + s.vy[k].bytes() + s.vz[k].bytes() +
              s.id[k].bytes();
-  for (const Buffer* b : {&s.keys, &s.values, &s.keys_tmp, &s.values_tmp, &s.rho, &s.pres, &s.pterm, &s.vol, &s.ax,
-                          &s.ay, &s.az, &s.start, &s.bx, &s.by, &s.bz, &s.bpsi, &s.bvx, &s.bvy, &s.bvz, &s.bsolid,
+  for (const Buffer* b : {&s.keys, &s.values, &s.keys_tmp, &s.values_tmp, &s.rho, &s.pres, &s.pterm, &s.vol, &s.phi, &s.ax,
+                          &s.ay, &s.az, &s.nx, &s.ny, &s.nz, &s.start, &s.bx, &s.by, &s.bz, &s.bpsi, &s.bvx, &s.bvy, &s.bvz, &s.bsolid,
                           &s.bstart, &s.step_out, &s.frame_out, &s.ex, &s.ey, &s.ez})
     total += b->bytes();
   return total + s.sort->scratch_bytes();
@@ -594,8 +556,8 @@ Solver::Snapshot Solver::snapshot() {
   Impl& s = *impl_;
   s.ensure_grid();
   const int f = s.front;
-  s.forces.args(s.P, s.start, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.rho, s.pterm, s.vol, s.bstart, s.bx,
-                s.by, s.bz, s.bpsi, s.bvx, s.bvy, s.bvz, s.ax, s.ay, s.az);
+  s.forces.args(s.P, s.start, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.rho, s.pterm, s.vol, s.phi, s.bstart,
+                s.bx, s.by, s.bz, s.bpsi, s.bvx, s.bvy, s.bvz, s.ax, s.ay, s.az, s.nx, s.ny, s.nz);
   s.ctx.launch(s.forces, s.n);
   s.settle_count();
   const std::size_t n = s.n, nb = s.nb;

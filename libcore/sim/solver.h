@@ -10,7 +10,7 @@
 //   grid      start[c] = first particle of cell c, for fluid and boundary.
 // One step: keys -> radix sort -> reorder -> cell starts -> density -> forces ->
 // reduction (max |v|, max |a|, non-finite values; the one small read per step) ->
-// dt on the host -> symplectic Euler -> emitters.
+// dt on the host -> symplectic Euler with wall contact -> emitters.
 #pragma once
 
 #include <cstdint>
@@ -38,14 +38,6 @@ struct FluidStats {
   std::int64_t fluid = 0;
 };
 
-// What relaxing the initial fluid did (Solver::relax).
-struct RelaxInfo {
-  int steps = 0;
-  double density_error_before = 0;  // max(0, rho/rho0 - 1), largest over the fluid
-  double density_error_after = 0;
-  double largest_move = 0;          // m, the farthest a particle moved
-};
-
 class Solver {
  public:
   // Uploads the setup and builds the kernels. Throws RunError on device failures,
@@ -59,15 +51,6 @@ class Solver {
   // is within reach. Throws RunError naming the step, time and particle when the
   // fluid blew up (non-finite values, or a speed above Parameters::speed_limit).
   StepInfo step(double t_target);
-
-  // Relaxes the fluid at t = 0 against the solids: with gravity off and damped
-  // velocities, lets the particles next to walls move to where their density is rho0
-  // (a solid's single layer of boundary particles weighs more than the fluid layer it
-  // replaces, so fluid placed one spacing from a wall starts compressed; left alone,
-  // that compression would blast the fluid off the walls). Stops when the largest
-  // compression is below `tolerance` or after `max_steps`; the initial velocities are
-  // restored. Does nothing without solids.
-  RelaxInfo relax(int max_steps, double tolerance);
 
   double time() const;
   std::int64_t steps() const;
