@@ -9,6 +9,8 @@
 #include <CGAL/convex_hull_3.h>
 
 #include <algorithm>
+#include <cmath>
+#include <random>
 #include <exception>
 #include <memory>
 #include <mutex>
@@ -20,6 +22,7 @@
 #include "mesh/properties.h"
 #include "voronoi/cgal_mesh.h"
 #include "voronoi/parallel.h"
+#include "voronoi/seeds.h"
 #include "voronoi/voronoi.h"
 
 namespace bw::voronoi {
@@ -282,6 +285,59 @@ SurfaceMesh group_hull(const std::vector<std::size_t>& group, const std::vector<
   return hull;
 }
 
+// Each corefinement looks for self-intersections among the faces it cuts and throws
+// when it finds one (a solid that was not checked, or one that rounding spoiled)
+// rather than producing a wrong fragment.
+const auto kSelfIntersectionCheck = CGAL::parameters::throw_on_self_intersection(true);
+
+// Nudges of the seeds, as a fraction of Solid::length_scale(): 1e-13 moves a
+// bisector plane by far less than the checks' tolerance (kDistanceTolerance, 1e-9)
+// for seeds at least 1e-4 of the size apart, and by about a thousand units in the
+// last place of the coordinates, enough to leave any exact coincidence. Each further
+// round multiplies it by 10.
+constexpr double kSeedNudge = 1e-13;
+constexpr int kNudgeRounds = 3;
+
+// True when the solid touches the cell's boundary where it is not locally convex: a
+// reflex vertex on a face of the cell, or a concave edge crossing an edge of the
+// cell (not a diagonal of a flat face). Exact predicates.
+char touches_reflex_features(const SurfaceMesh& cell, const Solid::Impl& s) {
+  const SurfaceMesh& m = s.surface;
+  std::vector<detail::Tree::Primitive_id> hits;
+  for (const auto f : cell.faces()) {
+    const auto h = cell.halfedge(f);
+    const Point& a = cell.point(cell.source(h));
+    const Point& b = cell.point(cell.target(h));
+    const Point& c = cell.point(cell.target(cell.next(h)));
+    const K::Triangle_3 triangle(a, b, c);
+    hits.clear();
+    s.tree.all_intersected_primitives(triangle, std::back_inserter(hits));
+    for (const auto g : hits)
+      for (const auto v : CGAL::vertices_around_face(m.halfedge(g), m)) {
+        if (!s.reflex_vertex[v.idx()]) continue;
+        const Point& p = m.point(v);
+        if (CGAL::orientation(a, b, c, p) == CGAL::COPLANAR && CGAL::do_intersect(triangle, p)) return 1;
+      }
+  }
+  for (const auto e : cell.edges()) {
+    const auto h = cell.halfedge(e);
+    const Point& p = cell.point(cell.source(h));
+    const Point& q = cell.point(cell.target(h));
+    const Point& r = cell.point(cell.target(cell.next(h)));
+    const Point& t = cell.point(cell.target(cell.next(cell.opposite(h))));
+    if (CGAL::orientation(p, q, r, t) == CGAL::COPLANAR) continue;
+    const K::Segment_3 edge(p, q);
+    hits.clear();
+    s.tree.all_intersected_primitives(edge, std::back_inserter(hits));
+    for (const auto g : hits)
+      for (const auto hg : CGAL::halfedges_around_face(m.halfedge(g), m)) {
+        if (!s.concave_edge[m.edge(hg).idx()]) continue;
+        if (CGAL::do_intersect(edge, K::Segment_3(m.point(m.source(hg)), m.point(m.target(hg))))) return 1;
+      }
+  }
+  return 0;
+}
+
 }  // namespace
 
 TriMesh voronoi_cell(std::span<const Vec3d> seeds, std::span<const std::int32_t> active, std::int32_t index,
@@ -301,19 +357,46 @@ CutResult cut(const Solid& solid, std::span<const Vec3d> seeds, std::span<const 
   const std::size_t n = active.size();
   CutResult result;
 
-  // 1. Cells, exactly, then rounded.
+  // 1. Cells, exactly, then rounded. A cell whose boundary passes exactly through a
+  // reflex vertex or a concave edge of the solid can meet it in a non-manifold way
+  // (two parts touching along an edge or at a point), which CGAL 5.5's corefinement
+  // does not always survive. Symmetric seeds in meshes with symmetric notches do
+  // that; then every seed is moved by a tiny pseudo-random amount (deterministic)
+  // and the cells are built again, up to kNudgeRounds times.
   Stopwatch clock;
-  const auto neighbours = delaunay_neighbours(seeds, active);
   const Aabb box = cell_box_for(solid.bounds());
+  std::vector<Vec3d> moved(seeds.begin(), seeds.end());  // the seeds the cells are built from
   std::vector<SurfaceMesh> cells(n);
   std::vector<std::string> failure(n);
-  detail::parallel_for(n, threads, [&](std::size_t a) {
-    try {
-      cells[a] = cell_mesh(seeds[static_cast<std::size_t>(active[a])], neighbour_points(seeds, active, neighbours[a]), box);
-    } catch (...) {
-      failure[a] = "building the Voronoi cell: " + describe_failure(std::current_exception());
+  std::vector<char> touching(n, 0);
+  for (int round = 0;; ++round) {
+    const auto neighbours = delaunay_neighbours(moved, active);
+    detail::parallel_for(n, threads, [&](std::size_t a) {
+      failure[a].clear();
+      touching[a] = 0;
+      try {
+        cells[a] = cell_mesh(moved[static_cast<std::size_t>(active[a])], neighbour_points(moved, active, neighbours[a]), box);
+        touching[a] = touches_reflex_features(cells[a], solid.impl());
+      } catch (...) {
+        failure[a] = "building the Voronoi cell: " + describe_failure(std::current_exception());
+      }
+    });
+    const bool touch = std::any_of(touching.begin(), touching.end(), [](char t) { return t != 0; });
+    if (!touch) break;
+    if (round == kNudgeRounds) {
+      for (std::size_t a = 0; a < n; ++a)
+        if (touching[a] && failure[a].empty())
+          failure[a] = "the cell's boundary passes exactly through a reflex vertex or concave edge of the solid, "
+                       "also after moving the seeds";
+      break;
     }
-  });
+    result.seed_nudge = kSeedNudge * std::pow(10.0, round) * solid.length_scale();
+    std::mt19937_64 rng(static_cast<std::uint64_t>(round) + 1);
+    for (const std::int32_t i : active) {
+      const auto k = static_cast<std::size_t>(i);
+      for (int axis = 0; axis < 3; ++axis) moved[k][axis] = seeds[k][axis] + result.seed_nudge * (2 * uniform01(rng) - 1);
+    }
+  }
   result.cell_seconds = clock.seconds();
 
   // 2. Each cell intersected with the solid, then split into components. Cutting
@@ -340,7 +423,7 @@ CutResult cut(const Solid& solid, std::span<const Vec3d> seeds, std::span<const 
         groups.push_back(std::move(g));
         continue;
       }
-      for (auto& half : split_in_halves(std::move(g), seeds, active)) todo.push_back(std::move(half));
+      for (auto& half : split_in_halves(std::move(g), moved, active)) todo.push_back(std::move(half));
     }
   }
   // The piece of the solid each cell is cut from: its group's piece, or the whole
@@ -349,9 +432,10 @@ CutResult cut(const Solid& solid, std::span<const Vec3d> seeds, std::span<const 
       n, std::shared_ptr<const SurfaceMesh>(&solid.impl().surface, [](const SurfaceMesh*) {}));
   detail::parallel_for(groups.size(), threads, [&](std::size_t g) {
     try {
-      SurfaceMesh hull = group_hull(groups[g], cells, seeds, active);
+      SurfaceMesh hull = group_hull(groups[g], cells, moved, active);
       auto piece = std::make_shared<SurfaceMesh>(solid.impl().surface);
-      if (PMP::corefine_and_compute_intersection(*piece, hull, *piece) && piece->number_of_faces() > 0) {
+      if (PMP::corefine_and_compute_intersection(*piece, hull, *piece, kSelfIntersectionCheck) &&
+          piece->number_of_faces() > 0) {
         for (const std::size_t a : groups[g]) piece_of[a] = piece;
       }
     } catch (...) {
@@ -365,7 +449,7 @@ CutResult cut(const Solid& solid, std::span<const Vec3d> seeds, std::span<const 
     if (failure[a].empty()) {
       try {
         SurfaceMesh part = *piece_of[a];
-        if (!PMP::corefine_and_compute_intersection(part, cells[a], part)) {
+        if (!PMP::corefine_and_compute_intersection(part, cells[a], part, kSelfIntersectionCheck)) {
           failure[a] = "the intersection of the cell with the solid is not a manifold mesh (the cell's boundary "
                        "meets the solid along an edge or at a vertex from two sides)";
         } else if (part.number_of_faces() == 0) {

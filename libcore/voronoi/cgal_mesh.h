@@ -38,6 +38,10 @@ struct Solid::Impl {
   double volume = 0;
   detail::SurfaceMesh surface;
   detail::Tree tree;  // over `surface`'s faces, with distance queries accelerated
+  // Where the solid is not locally convex (exact predicates): edges whose two faces
+  // meet at a reflex angle (by edge index of `surface`), and their end vertices.
+  std::vector<bool> concave_edge;
+  std::vector<bool> reflex_vertex;
 };
 
 }  // namespace bw::voronoi

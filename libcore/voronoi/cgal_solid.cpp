@@ -35,6 +35,7 @@ SurfaceMesh to_surface_mesh(const TriMesh& mesh) {
 namespace PMP = CGAL::Polygon_mesh_processing;
 using detail::K;
 using detail::SurfaceMesh;
+using Point_3 = detail::Point;
 
 Solid::Solid(TriMesh mesh) : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
@@ -45,6 +46,24 @@ Solid::Solid(TriMesh mesh) : impl_(std::make_unique<Impl>()) {
   s.tree.insert(faces(s.surface).first, faces(s.surface).second, s.surface);
   s.tree.build();
   s.tree.accelerate_distance_queries();
+  const SurfaceMesh& m = s.surface;
+  s.concave_edge.assign(m.number_of_edges(), false);
+  s.reflex_vertex.assign(m.number_of_vertices(), false);
+  for (const auto e : m.edges()) {
+    const auto h = m.halfedge(e);
+    const auto o = m.opposite(h);
+    // The far corner of the face across the edge lies outside (on the positive
+    // side of) this face's plane exactly when the edge is reflex.
+    const Point_3& a = m.point(m.source(h));
+    const Point_3& b = m.point(m.target(h));
+    const Point_3& c = m.point(m.target(m.next(h)));
+    const Point_3& d = m.point(m.target(m.next(o)));
+    if (CGAL::orientation(a, b, c, d) == CGAL::POSITIVE) {
+      s.concave_edge[e.idx()] = true;
+      s.reflex_vertex[m.source(h).idx()] = true;
+      s.reflex_vertex[m.target(h).idx()] = true;
+    }
+  }
 }
 
 Solid::~Solid() = default;
@@ -54,6 +73,16 @@ Solid& Solid::operator=(Solid&&) noexcept = default;
 const TriMesh& Solid::mesh() const { return impl_->mesh; }
 const Aabb& Solid::bounds() const { return impl_->bounds; }
 double Solid::volume() const { return impl_->volume; }
+
+std::size_t Solid::concave_edges() const {
+  return static_cast<std::size_t>(std::count(impl_->concave_edge.begin(), impl_->concave_edge.end(), true));
+}
+
+double Solid::length_scale() const {
+  const Aabb& box = impl_->bounds;
+  const double coordinate = std::max(box.min.cwiseAbs().maxCoeff(), box.max.cwiseAbs().maxCoeff());
+  return std::max(box.extent().norm(), coordinate);
+}
 
 Side Solid::side(const Vec3d& p) const {
   // Side_of_triangle_mesh over the prebuilt tree: ray parity with exact predicates;

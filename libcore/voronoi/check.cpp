@@ -34,12 +34,6 @@ void set(CheckItem& c, bool ok, std::string detail) {
   c.detail = std::move(detail);
 }
 
-// The length that kDistanceTolerance is a fraction of.
-double size_scale(const Aabb& box) {
-  const double coordinate = std::max(box.min.cwiseAbs().maxCoeff(), box.max.cwiseAbs().maxCoeff());
-  return std::max(box.extent().norm(), coordinate);
-}
-
 // Worst violation found by one of the geometric checks, kept across threads.
 struct Worst {
   std::mutex mutex;
@@ -192,7 +186,7 @@ std::vector<CheckItem> check_fragments(const Solid& solid, std::span<const Vec3d
 
   // Vertices and face centroids of every fragment inside the solid, or within the
   // tolerance of its surface.
-  const double tolerance = kDistanceTolerance * size_scale(solid.bounds());
+  const double tolerance = kDistanceTolerance * solid.length_scale();
   CheckItem inside = item("inside_mesh", "no fragment reaches outside the mesh");
   Worst outside;
   detail::parallel_for(fragments.size(), threads, [&](std::size_t i) {
@@ -302,6 +296,7 @@ CheckResult prefracture_check(TriMesh mesh, const SeedChoice& choice, const Chec
   r.input = prepare_solid_mesh(mesh, options.source);
   if (r.input.flipped) warn("the mesh faced inwards: its faces were reversed");
   const Solid solid(std::move(mesh));
+  r.concave_edges = solid.concave_edges();
   CheckItem closed = item("input_closed", "input is closed and consistently oriented");
   set(closed, true, fmt::format("{} vertices, {} triangles, volume {:.6g}", r.input.mesh.vertices,
                                 r.input.mesh.triangles, r.input.volume));
@@ -358,6 +353,12 @@ CheckResult prefracture_check(TriMesh mesh, const SeedChoice& choice, const Chec
     CutResult cut_result = cut(solid, r.seeds, r.sorting.active, cut_options);
     r.seconds_cells = cut_result.cell_seconds;
     r.seconds_clip = cut_result.clip_seconds;
+    if (cut_result.seed_nudge > 0) {
+      warn(fmt::format("seeds moved by up to {:.3g} so that no cell boundary passes exactly through a reflex "
+                       "vertex or concave edge of the mesh",
+                       cut_result.seed_nudge));
+    }
+    r.seed_nudge = cut_result.seed_nudge;
     r.fragments = std::move(cut_result.fragments);
     r.failures = std::move(cut_result.failures);
     clock.restart();
@@ -392,11 +393,13 @@ Report CheckResult::report() const {
   in.set("components", static_cast<std::int64_t>(input.mesh.components));
   in.set("volume", input.volume);
   in.set("flipped", input.flipped);
+  in.set("concave_edges", static_cast<std::int64_t>(concave_edges));
   in.set("self_intersections", static_cast<std::int64_t>(self_intersection_pairs));
   Report& s = report.child("seeds");
   s.set("given", static_cast<std::int64_t>(seeds.size()));
   s.set("used", static_cast<std::int64_t>(sorting.active.size()));
   s.set("ignored", static_cast<std::int64_t>(seeds.size() - sorting.active.size()));
+  s.set("nudge", seed_nudge);
   for (std::size_t i = 0; i < sorting.fate.size(); ++i) {
     if (sorting.fate[i] == SeedFate::used) continue;
     Report& e = s.append("ignored_seeds");

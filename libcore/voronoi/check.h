@@ -124,6 +124,8 @@ struct CheckResult {
   std::vector<Fragment> fragments;
   FragmentFigures figures;
   std::size_t self_intersection_pairs = 0;
+  std::size_t concave_edges = 0;
+  double seed_nudge = 0;             // CutResult::seed_nudge
   double seconds_input = 0, seconds_cells = 0, seconds_clip = 0, seconds_checks = 0;
 
   bool passed() const;

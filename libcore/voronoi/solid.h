@@ -32,6 +32,14 @@ class Solid {
   const TriMesh& mesh() const;
   const Aabb& bounds() const;
   double volume() const;
+  // The length that relative tolerances are fractions of: the larger of the
+  // bounding-box diagonal and the largest absolute coordinate (rounding errors grow
+  // with the coordinates, not only with the size).
+  double length_scale() const;
+
+  // Edges where the solid is not locally convex: their two faces meet at a reflex
+  // angle (exact predicates; flat edges are not counted).
+  std::size_t concave_edges() const;
 
   // Exact: a point on a face, edge or vertex is on the boundary.
   Side side(const Vec3d& p) const;

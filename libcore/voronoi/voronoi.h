@@ -12,7 +12,10 @@
 //
 // Every cell is cut independently, in parallel; a cell that fails (CGAL throws, or
 // the intersection would not be a manifold mesh) is reported with its seed and the
-// other cells go on.
+// other cells go on. A cell boundary that passes exactly through a reflex vertex or
+// a concave edge of the solid (symmetric seeds in a solid with a notch) could make
+// two parts of a fragment touch along an edge; the seeds are then moved by a tiny
+// deterministic amount (CutResult::seed_nudge) before cutting.
 #pragma once
 
 #include <cstddef>
@@ -46,6 +49,9 @@ struct CutResult {
   // and `body` is -1.
   std::vector<Fragment> fragments;
   std::vector<CellFailure> failures;  // ordered by seed
+  // 0, or how far (at most, per coordinate) the seeds were moved because a cell's
+  // boundary passed exactly through a reflex vertex or concave edge of the solid.
+  double seed_nudge = 0;
   double cell_seconds = 0;            // building the cells (wall clock, all threads)
   double clip_seconds = 0;            // intersecting them with the solid
 };

@@ -155,6 +155,28 @@ TEST(VoronoiCut, DegenerateSeedSetsStillPartitionTheSolid) {
   for (const Fragment& f : lattice.fragments) EXPECT_NEAR(f.volume, 1.0 / 27, 1e-15);
 }
 
+// An L-shaped prism and two seeds mirrored in the plane x + y = 2, which holds the
+// concave edge of the L: the cell of the first seed would be two prisms touching
+// along that edge. The seeds are nudged and the cut goes through.
+TEST(VoronoiCut, CellBoundaryThroughAConcaveEdgeIsNudged) {
+  const std::vector<Eigen::Vector2d> l = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  const bv::Solid solid(bw::mesh::extrude(l, 0, 1));
+  EXPECT_EQ(solid.concave_edges(), 1u);
+  const std::vector<Vec3d> seeds = {{1.8, 0.5, 0.5}, {1.5, 0.2, 0.5}};
+  const bv::CutResult r = cut_all(solid, seeds);
+  EXPECT_TRUE(r.failures.empty()) << r.failures.front().message;
+  EXPECT_GT(r.seed_nudge, 0);
+  EXPECT_LT(r.seed_nudge, 1e-11);
+  expect_closed(r.fragments);
+  EXPECT_GE(r.fragments.size(), 2u);
+  EXPECT_NEAR(volume_sum(r.fragments), 3.0, 1e-12);
+  const auto checks = bv::check_fragments(solid, seeds, all(seeds.size()), r.fragments, r.failures, 0);
+  for (const auto& c : checks) EXPECT_EQ(c.status, bv::CheckStatus::pass) << c.name << ": " << c.detail;
+  // Seeds in general position are not moved.
+  EXPECT_EQ(cut_all(solid, {{1.8, 0.5, 0.5}, {1.5, 0.21, 0.5}}).seed_nudge, 0.0);
+  EXPECT_EQ(bv::Solid(bw::mesh::box({0, 0, 0}, {1, 1, 1}, 2)).concave_edges(), 0u);
+}
+
 TEST(VoronoiCut, SameFragmentsOnOneThreadAndOnSeveral) {
   const bv::Solid solid(bw::mesh::icosphere({0, 0, 0}, 1, 3));
   const std::vector<Vec3d> seeds = bv::random_seeds(solid, 30, 11);
@@ -194,6 +216,43 @@ TEST(VoronoiCell, CellsOfRandomSeedsTileTheirBox) {
       for (const Vec3d& q : seeds) EXPECT_LE((p - seeds[static_cast<std::size_t>(i)]).norm(), (p - q).norm() + 1e-12);
   }
   EXPECT_NEAR(sum, 8.0, 1e-12);
+}
+
+}  // namespace
+
+namespace {
+
+// Cut without the input check: two overlapping cubes in one mesh. CGAL throws for
+// the cells whose faces meet the crossing faces; each is reported with its seed, and
+// the cells far from the overlap are cut.
+TEST(VoronoiCut, CellsThatFailAreReportedAndTheOthersAreCut) {
+  TriMesh mesh = bw::mesh::box({0, 0, 0}, {1, 1, 1});
+  bw::mesh::append(mesh, bw::mesh::box({0.5, 0.5, 0.5}, {1.5, 1.5, 1.5}));
+  const bv::Solid solid(mesh);
+  // A lattice of spacing 0.3 over both cubes: cell faces at 0.3, 0.6, 0.9 and 1.2
+  // cross the lines where the cubes' faces cross.
+  std::vector<Vec3d> seeds;
+  auto in = [](const Vec3d& p, double lo, double hi) { return (p.array() > lo).all() && (p.array() < hi).all(); };
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 5; ++j)
+      for (int i = 0; i < 5; ++i) {
+        const Vec3d p(0.15 + 0.3 * i, 0.15 + 0.3 * j, 0.15 + 0.3 * k);
+        if (in(p, 0, 1) || in(p, 0.5, 1.5)) seeds.push_back(p);
+      }
+  const bv::CutResult r = cut_all(solid, seeds);
+  ASSERT_FALSE(r.failures.empty());
+  for (const bv::CellFailure& f : r.failures) {
+    EXPECT_GE(f.seed, 0);
+    EXPECT_FALSE(f.message.empty());
+  }
+  EXPECT_NE(r.failures.front().message.find("intersecting the cell with the solid"), std::string::npos)
+      << r.failures.front().message;
+  // The corner cell is far from the overlap: cut, closed, the cube [0, 0.3]^3.
+  ASSERT_FALSE(r.fragments.empty());
+  EXPECT_EQ(r.fragments.front().seed, 0);
+  expect_closed({r.fragments.front()});
+  EXPECT_NEAR(r.fragments.front().volume, 0.027, 1e-15);
+  EXPECT_EQ(r.fragments.size() + r.failures.size(), seeds.size());
 }
 
 }  // namespace
