@@ -452,9 +452,7 @@ CutResult cut(const Solid& solid, std::span<const Vec3d> seeds, std::span<const 
         if (!PMP::corefine_and_compute_intersection(part, cells[a], part, kSelfIntersectionCheck)) {
           failure[a] = "the intersection of the cell with the solid is not a manifold mesh (the cell's boundary "
                        "meets the solid along an edge or at a vertex from two sides)";
-        } else if (part.number_of_faces() == 0) {
-          failure[a] = "the cell does not intersect the solid";
-        } else {
+        } else if (part.number_of_faces() > 0) {
           pieces[a] = split_components(part, active[a]);
         }
       } catch (...) {

@@ -58,9 +58,12 @@ struct CutResult {
 
 // The Voronoi cells of the seeds listed in `active` (indices into `seeds`; the others
 // take no part), each intersected with the solid. Fragment::seed is an index into
-// `seeds`.
-// Preconditions: the active seeds are distinct and lie inside the solid; the solid's
-// mesh does not intersect itself (Solid::self_intersections is empty).
+// `seeds`. A seed may lie outside the solid: its cell still takes its share, and
+// gives no fragment when it misses the solid. Throws InputError when two active
+// seeds coincide.
+// Precondition: the solid's mesh does not intersect itself
+// (Solid::self_intersections is empty); where it does, the cells that meet the
+// crossing faces fail.
 CutResult cut(const Solid& solid, std::span<const Vec3d> seeds, std::span<const std::int32_t> active,
               const CutOptions& options = {});
 

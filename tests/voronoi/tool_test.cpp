@@ -8,6 +8,7 @@
 #include "mesh/import.h"
 #include "mesh/properties.h"
 #include "mesh/shapes.h"
+#include "synthetic_run.h"
 #include "test_support.h"
 
 namespace {
@@ -176,6 +177,48 @@ TEST(BwVoronoi, ParticlesFileThroughAPipe) {
   EXPECT_EQ(bw::read_fragments(dir.file("f.h5")).fragments.size(), 8u);
   const bw::TriMesh back = bw::mesh::import_mesh(dir.file("parts/fragment_0003_seed_0003_0.ply"));
   EXPECT_NEAR(bw::mesh::mass_properties(back).volume, 0.125, 1e-6);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(BwVoronoiReplay, WritesOneFragmentPerBodyOfTheRun) {
+  TempDir dir;
+  bw::test::SyntheticRun s = bw::test::make_u_run(dir.file("u.h5"), 0.125);
+  s.fracture(0, {{0.5, 2.5, 0.5}, {1.5, 0.5, 0.5}}, 0.1);
+  bw::write_run(s.run, dir.file("run.h5"));
+  const auto r = run(kVoronoi + " replay " + dir.file("run.h5") + " -o " + dir.file("f.h5") + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("\"matched\": 3"), std::string::npos) << r.out;
+  const bw::FragmentSet set = bw::read_fragments(dir.file("f.h5"));
+  EXPECT_EQ(set.source, dir.file("run.h5"));
+  EXPECT_EQ(set.options, "replay");
+  ASSERT_EQ(set.fragments.size(), 3u);
+  std::vector<std::int32_t> bodies;
+  for (const auto& f : set.fragments) bodies.push_back(f.body);
+  std::sort(bodies.begin(), bodies.end());
+  EXPECT_EQ(bodies, (std::vector<std::int32_t>{1, 2, 3}));
+}
+
+TEST(BwVoronoiReplay, UnmatchedBodyIsExitThreeAndNamed) {
+  TempDir dir;
+  bw::test::SyntheticRun s = bw::test::make_u_run(dir.file("u.h5"), 0.125);
+  s.fracture(0, {{0.5, 2.5, 0.5}, {1.5, 0.5, 0.5}}, 0.1);
+  s.run.bodies.push_back(s.run.bodies[1]);
+  s.run.fractures[0].child_body.push_back(4);
+  s.run.fractures[0].child_seed.push_back(1);
+  s.run.fractures[0].child_component.push_back(1);
+  bw::write_run(s.run, dir.file("run.h5"));
+  const auto r = run(kVoronoi + " replay " + dir.file("run.h5") + " -o " + dir.file("f.h5"));
+  EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
+  EXPECT_NE(r.out.find("body 4     event 0, seed 1: the exact cut gives seed 1"), std::string::npos) << r.out;
+  EXPECT_EQ(bw::read_fragments(dir.file("f.h5")).fragments.size(), 3u);
+  // Not a run file: bad input, nothing written.
+  const auto wrong = run(kVoronoi + " replay " + dir.file("u.h5") + " -o " + dir.file("g.h5"));
+  EXPECT_EQ(wrong.exit_code, 2);
+  EXPECT_NE(wrong.err.find("particles"), std::string::npos) << wrong.err;
+  EXPECT_FALSE(bw::test::exists(dir.file("g.h5")));
 }
 
 }  // namespace

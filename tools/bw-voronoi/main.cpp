@@ -5,6 +5,7 @@
 #include "cli/tool.h"
 #include "common/terminal.h"
 #include "voronoi/check.h"
+#include "voronoi/replay.h"
 
 namespace {
 
@@ -21,6 +22,15 @@ struct CheckArgs {
   bool verbose = false;
 };
 
+struct ReplayArgs {
+  std::string run;
+  std::string output;
+  std::string export_dir;
+  std::string export_format = "obj";
+  bool json = false;
+  int threads = 0;
+};
+
 void print(const std::string& text, bool to_stderr) { std::fputs(text.c_str(), to_stderr ? stderr : stdout); }
 
 }  // namespace
@@ -34,6 +44,7 @@ int main(int argc, char** argv) {
                  "  bw-voronoi check wall.h5 --seeds seeds.txt -o wall_fragments.h5 --export wall_fragments/\n"
                  "  bw-voronoi check plate.obj --seeds old_fragments.h5 --json > report.json\n"
                  "  bw-sample dam.obj --spacing 0.02 -o - | bw-voronoi check - --random 50\n"
+                 "  bw-voronoi replay out/dam/run.h5 -o out/dam/fragments.h5\n"
                  "Exit status: 0 every check passed, 3 a check failed, 2 bad usage or input, 1 failure.\n");
   app.require_subcommand(1);
 
@@ -60,7 +71,35 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   check->add_flag("-v,--verbose", c.verbose, "Print the options used");
 
+  ReplayArgs p;
+  CLI::App* replay = app.add_subcommand(
+      "replay", "Rebuild the exact mesh of every body that fracture created in a run, from its recorded events");
+  replay->add_option("run", p.run, "Run file written by bw-sim (OUTDIR/run.h5)")->required();
+  replay->add_option("-o,--output", p.output, "Fragments file to write, one fragment per body (HDF5; '-' for stdout)")
+      ->required();
+  replay->add_option("--export", p.export_dir, "Also write each fragment as a mesh file into this folder");
+  replay->add_option("--export-format", p.export_format, "Mesh format of --export")
+      ->check(CLI::IsMember({"obj", "ply"}));
+  replay->add_flag("--json", p.json, "Print the report as JSON");
+  replay->add_option("--threads", p.threads, "Worker threads (default: one per hardware thread)")
+      ->check(CLI::NonNegativeNumber);
+
   return bw::cli::run(app, argc, argv, [&] {
+    if (*replay) {
+      bw::voronoi::ReplayOptions options;
+      options.source = p.run;
+      options.threads = p.threads;
+      options.warn = [&](const std::string& message) { bw::cli::note(app, "warning: " + message); };
+      const bw::RunRecord run = bw::read_run(p.run);
+      const bw::voronoi::ReplayResult result = bw::voronoi::replay_run(run, options);
+      bw::FragmentSet set = result.fragments;
+      set.tool = "bw-voronoi " BW_VERSION;
+      set.options = "replay";
+      bw::write_fragments(set, p.output);
+      if (!p.export_dir.empty()) bw::voronoi::export_fragments(set.fragments, p.export_dir, p.export_format);
+      print(p.json ? result.report().to_json() + "\n" : result.text(), p.output == "-");
+      return result.passed() ? bw::kExitOk : bw::kExitCheckFailed;
+    }
     if (!*seeds && !*random) throw bw::InputError("check: give the seeds with --seeds FILE or --random N");
     // The report goes to standard output, unless the fragments file does.
     const bool report_to_stderr = c.output == "-";
