@@ -47,7 +47,8 @@ __kernel void boundary_psi(SimParams P, uint nb, __global const uint* bstart, __
   bpsi[i] = P.rho0 / sum;
 }
 
-// rho_i = m sum_j W_poly6(x_ij) + gamma1 sum_b Psi_b W_spiky(x_ib), then the Tait pressure, the
+// rho_i = m sum_j W(x_ij) + gamma1 sum_b Psi_b W(x_ib) with W = W_spiky, then the Tait
+// pressure, the
 // per-particle factors the force kernel reads: pterm = p / rho^2, vol = 1 / rho, and
 // the boundary fraction phi = sum_b Psi_b W_spiky(x_ib) / rho0 (1 on a wall's layer of
 // particles, 0.15 one spacing from a flat wall, 0 far from walls).
@@ -63,7 +64,7 @@ __kernel void fluid_density(SimParams P, __global const uint* start, __global co
   const int cy = bw_cell_coord(yi, P.oy, P.inv_cell, P.ny);
   const int cz = bw_cell_coord(zi, P.oz, P.inv_cell, P.nz);
   const int x0 = max(cx - 1, 0), x1 = min(cx + 1, P.nx - 1);
-  const float h2 = P.h2;
+  const float h = P.h, h2 = P.h2;
   vfloat wf = 0.0f, wb = 0.0f;
   for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
     for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
@@ -72,20 +73,20 @@ __kernel void fluid_density(SimParams P, __global const uint* start, __global co
       for (int j = s; j < e; j += BW_VW) {
         const vfloat dx = xi - VLOAD(x + j), dy = yi - VLOAD(y + j), dz = zi - VLOAD(z + j);
         const vfloat r2 = dx * dx + dy * dy + dz * dz;
-        const vfloat d = h2 - r2;
-        wf += select((vfloat)0.0f, d * d * d, (r2 < h2) & VIN_ROW(j, e));
+        const vfloat q = h - sqrt(r2);
+        wf += select((vfloat)0.0f, q * q * q, (r2 < h2) & VIN_ROW(j, e));
       }
       const int bs = (int)bstart[row + x0], be = (int)bstart[row + x1 + 1];
       for (int j = bs; j < be; j += BW_VW) {
         const vfloat dx = xi - VLOAD(bx + j), dy = yi - VLOAD(by + j), dz = zi - VLOAD(bz + j);
         const vfloat r2 = dx * dx + dy * dy + dz * dz;
-        const vfloat q = P.h - sqrt(r2);
+        const vfloat q = h - sqrt(r2);
         wb += select((vfloat)0.0f, VLOAD(bpsi + j) * q * q * q, (r2 < h2) & VIN_ROW(j, be));
       }
     }
   }
   const float boundary = P.spiky * VSUM(wb);
-  const float r = P.poly6 * P.mass * VSUM(wf) + P.gamma1 * boundary;
+  const float r = P.spiky * P.mass * VSUM(wf) + P.gamma1 * boundary;
   const float p = bw_tait(r, P.rho0, P.stiffness, P.gamma, P.gamma_int);
   rho[i] = r;
   pres[i] = p;
@@ -94,15 +95,14 @@ __kernel void fluid_density(SimParams P, __global const uint* start, __global co
   phi[i] = boundary / P.rho0;
 }
 
-// Accelerations (method.md 1 and 2.3, each pressure force with the gradient of the
-// kernel that weighs the pair in the density, docs/scene.md "Physics"):
-//   pressure   -m sum_j (p_i/rho_i^2 + p_j/rho_j^2) grad W_poly6(x_ij)
+// Accelerations (method.md 1 and 2.3; the pressure forces use the gradient of the
+// density's kernel, W_spiky, docs/scene.md "Physics"):
+//   pressure   -m sum_j (p_i/rho_i^2 + p_j/rho_j^2) grad W_spiky(x_ij)
 //   viscosity  (mu/rho_i) sum_j m (v_j - v_i)/rho_j lap W_visc(x_ij)
 //   boundary   -gamma2 sum_b Psi_b (p_i/rho_i^2 + p_i/rho0^2) grad W_spiky(x_ib)
 //   friction   (mu_b/rho_i) sum_b (Psi_b/rho0) (v_b - v_i) lap W_visc(x_ib)
 //   gravity    g
-// with grad W_poly6(x) = -6 poly6 (h^2 - r^2)^2 x, grad W_spiky(x) = -3 spiky
-// (h - r)^2 x / r and lap W_visc = visc (h - r). A particle in contact with a wall
+// with grad W_spiky(x) = -3 spiky (h - r)^2 x / r and lap W_visc = visc (h - r). A particle in contact with a wall
 // (phi > contact) also gets the wall's normal n, pointing from the wall to it, for
 // the contact rule of fluid_integrate; other particles get n = 0.
 __kernel void fluid_forces(SimParams P, __global const uint* start, __global const float* x,
@@ -126,7 +126,7 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
   const int x0 = max(cx - 1, 0), x1 = min(cx + 1, P.nx - 1);
   const float h = P.h, h2 = P.h2;
   const float min_r2 = h2 * BW_MIN_R2_FRACTION;
-  vfloat fx = 0.0f, fy = 0.0f, fz = 0.0f;    // sum (Pi + Pj) (h^2 - r^2)^2 x_ij
+  vfloat fx = 0.0f, fy = 0.0f, fz = 0.0f;    // sum (Pi + Pj) (h - r)^2 / r x_ij
   vfloat lx = 0.0f, ly = 0.0f, lz = 0.0f;    // sum (v_j - v_i) (h - r) / rho_j
   vfloat bfx = 0.0f, bfy = 0.0f, bfz = 0.0f; // sum Psi_b (h - r)^2 / r x_ib
   vfloat blx = 0.0f, bly = 0.0f, blz = 0.0f; // sum Psi_b (v_b - v_i) (h - r)
@@ -138,9 +138,10 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
         const vfloat dx = xi - VLOAD(x + j), dy = yi - VLOAD(y + j), dz = zi - VLOAD(z + j);
         const vfloat r2 = dx * dx + dy * dy + dz * dz;
         const vint ok = (r2 < h2) & (r2 > min_r2) & VIN_ROW(j, e);
-        const vfloat d = h2 - r2;
-        const vfloat c = select((vfloat)0.0f, (pti + VLOAD(pterm + j)) * d * d, ok);
-        const vfloat w = select((vfloat)0.0f, (h - sqrt(r2)) * VLOAD(vol + j), ok);
+        const vfloat ir = rsqrt(fmax(r2, min_r2));
+        const vfloat q = h - r2 * ir;
+        const vfloat c = select((vfloat)0.0f, (pti + VLOAD(pterm + j)) * q * q * ir, ok);
+        const vfloat w = select((vfloat)0.0f, q * VLOAD(vol + j), ok);
         fx += c * dx;
         fy += c * dy;
         fz += c * dz;
@@ -167,11 +168,11 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
       }
     }
   }
-  // -grad W is 6 poly6 (h^2 - r^2)^2 x and 3 spiky (h - r)^2 x / r: the sums above
-  // point away from the neighbours, so every pressure term below is repulsive.
-  const float kp = P.mass * 6.0f * P.poly6;
+  // -grad W_spiky is 3 spiky (h - r)^2 x / r: the sums above point away from the
+  // neighbours, so every pressure term below is repulsive.
+  const float kp = P.grad_scale * P.mass * 3.0f * P.spiky;
   const float kv = P.mu * P.mass * P.visc / rhoi;
-  const float kbp = 3.0f * P.spiky * P.gamma2 * (pti + pti * rhoi * rhoi / (P.rho0 * P.rho0));
+  const float kbp = P.grad_scale * 3.0f * P.spiky * P.gamma2 * (pti + pti * rhoi * rhoi / (P.rho0 * P.rho0));
   const float kbv = P.mu_b * P.visc / (rhoi * P.rho0);
   ax[i] = kp * VSUM(fx) + kv * VSUM(lx) + kbp * VSUM(bfx) + kbv * VSUM(blx) + P.gx;
   ay[i] = kp * VSUM(fy) + kv * VSUM(ly) + kbp * VSUM(bfy) + kbv * VSUM(bly) + P.gy;
@@ -268,7 +269,7 @@ __kernel void fluid_frame_reduce(SimParams P, uint n, uint chunk, uint nblocks, 
     const float v2 = vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i];
     r.kinetic += 0.5f * P.mass * v2;
     r.potential -= P.mass * (P.gx * (x[i] - P.ox) + P.gy * (y[i] - P.oy) + P.gz * (z[i] - P.oz));
-    r.elastic += P.mass * bw_tait_energy(rho[i], P.rho0, P.stiffness, P.gamma);
+    r.elastic += P.grad_scale * P.mass * bw_tait_energy(rho[i], P.rho0, P.stiffness, P.gamma);
     const float err = fmax(rho[i] / P.rho0 - 1.0f, 0.0f);
     r.error_sum += err;
     r.error_max = fmax(r.error_max, err);

@@ -5,10 +5,10 @@
 // that differ between compilers), so their layout is the same on host and device; they
 // are passed to kernels by value. The kernel functions follow method.md section 1:
 // Mueller et al. 2003's poly6, spiky and viscosity kernels, all zero beyond the
-// support radius h. The solver (docs/scene.md, "Physics") weighs fluid neighbours with
-// poly6 and boundary particles with spiky, and takes each pressure force from the
-// gradient of the kernel that weighs the pair in the density; viscosity and friction
-// use the viscosity kernel's Laplacian.
+// support radius h. The solver (docs/scene.md, "Physics") uses spiky for the density
+// and its gradient for the pressure forces, so that forces are the gradient of the
+// energy the density stores; viscosity and friction use the viscosity Laplacian.
+// poly6 stays here for the tests.
 #ifndef BW_SPH_COMMON_H
 #define BW_SPH_COMMON_H
 
@@ -32,8 +32,8 @@ typedef std::uint32_t bw_uint;
 typedef struct {
   // kernel support radius h (m), h^2, and the constant factors of the three kernels
   float h, h2;
-  float poly6;      // 315 / (64 pi h^9): W_poly6 = poly6 (h^2 - r^2)^3
   float spiky;      // 15 / (pi h^6): W_spiky = spiky (h - r)^3
+  float grad_scale; // 1 / c: corrects the spiky gradient's first moment c on the lattice
   float visc;       // 45 / (pi h^6): lap W_visc = visc (h - r)
   // fluid
   float mass;       // particle mass (kg): a particle inside a full lattice has rho0

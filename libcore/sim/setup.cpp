@@ -34,13 +34,6 @@ double spiky(double r2, double h) {
   return 15.0 / (std::numbers::pi * std::pow(h, 6)) * (h - r) * (h - r) * (h - r);
 }
 
-double poly6(double r2, double h) {
-  const double h2 = h * h;
-  if (r2 >= h2) return 0;
-  const double d = h2 - r2;
-  return 315.0 / (64.0 * std::numbers::pi * std::pow(h, 9)) * d * d * d;
-}
-
 std::int64_t lattice_count(double length, double spacing) {
   return static_cast<std::int64_t>(std::floor(length / spacing + kLatticeSlack));
 }
@@ -62,8 +55,23 @@ double lattice_kernel_sum(double spacing, double h) {
   double sum = 0;
   for (int k = -reach; k <= reach; ++k)
     for (int j = -reach; j <= reach; ++j)
-      for (int i = -reach; i <= reach; ++i) sum += poly6(spacing * spacing * (i * i + j * j + k * k), h);
+      for (int i = -reach; i <= reach; ++i) sum += spiky(spacing * spacing * (i * i + j * j + k * k), h);
   return sum;
+}
+
+double lattice_gradient_moment(double spacing, double h) {
+  const int reach = static_cast<int>(std::ceil(h / spacing));
+  const double spiky_grad = 45.0 / (std::numbers::pi * std::pow(h, 6));  // -dW/dr = spiky_grad (h - r)^2
+  double moment = 0;
+  for (int k = -reach; k <= reach; ++k)
+    for (int j = -reach; j <= reach; ++j)
+      for (int i = -reach; i <= reach; ++i) {
+        const double r = spacing * std::sqrt(double(i * i + j * j + k * k));
+        if (r <= 0 || r >= h) continue;
+        // x_ij (x) grad W: its trace is r dW/dr.
+        moment += r * spiky_grad * (h - r) * (h - r);
+      }
+  return moment / (3 * lattice_kernel_sum(spacing, h));
 }
 
 double calibrated_gamma1(double spacing, double h) {
@@ -77,9 +85,9 @@ double calibrated_gamma1(double spacing, double h) {
   };
   // A particle one spacing from the wall misses the fluid layers 1, 2, ... (mass
   // m = rho0 / full lattice sum each); the wall, layer 1, gives gamma1 Psi_b per
-  // particle with Psi_b = rho0 / (its own layer's spiky sum).
+  // particle with Psi_b = rho0 / (its own layer's sum).
   double missing = 0;
-  for (int k = 1; k <= reach; ++k) missing += layer(poly6, k);
+  for (int k = 1; k <= reach; ++k) missing += layer(spiky, k);
   missing /= lattice_kernel_sum(spacing, h);
   const double wall = layer(spiky, 1) / layer(spiky, 0);
   return missing / wall;
@@ -147,6 +155,7 @@ Setup prepare(const scene::Scene& s, double end_time) {
   p.cfl = s.time.cfl;
   p.force_factor = s.time.force_factor;
   p.mass = p.rho0 / lattice_kernel_sum(p.spacing, p.h);
+  p.gradient_moment = lattice_gradient_moment(p.spacing, p.h);
   p.domain = s.domain;
   std::int64_t cells = 1;
   for (int a = 0; a < 3; ++a) {

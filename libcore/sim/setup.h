@@ -15,22 +15,28 @@
 
 namespace bw::sim {
 
-// Sum of W_poly6(|x_j|, h) over a simple cubic lattice of the given spacing around a
+// Sum of W_spiky(|x_j|, h), the density kernel, over a simple cubic lattice of the given spacing around a
 // particle at a lattice point, the particle itself included (computed in double).
 double lattice_kernel_sum(double spacing, double h);
 
 // The default boundary weight gamma1: the value for which a fluid particle one
 // spacing from a flat wall (one layer of boundary particles at the same spacing,
-// weighed with W_spiky and Akinci's Psi_b) has exactly rho0, like a particle inside
-// the fluid, so that fluid placed next to walls starts at rest. 1.30 at h = 2
-// spacings. (With W_poly6 and gamma1 = 1 that particle would start 12% compressed,
-// 25% in a corner, which a stiff fluid turns into a blast at t = 0.)
+// with Akinci's Psi_b) has exactly rho0, like a particle inside the fluid, so that
+// fluid placed next to walls starts at rest. (With gamma1 = 1 and W_poly6, method.md's
+// literal choice, that particle would start 12% compressed, 25% in a corner, which a
+// stiff fluid turns into a blast at t = 0.)
 double calibrated_gamma1(double spacing, double h);
+
+// c = -(1/3) trace of sum_j V x_ij (x) grad W(x_ij) over the same lattice, V = 1 /
+// lattice_kernel_sum: how much the kernel gradient underestimates a linear field's
+// gradient there (1 for an exact kernel; 0.774 for W_spiky at h = 2 spacings).
+double lattice_gradient_moment(double spacing, double h);
 
 struct Parameters {
   double spacing = 0;
   double h = 0;                 // support radius
   double mass = 0;              // rho0 / lattice_kernel_sum: a full lattice has rho0
+  double gradient_moment = 1;   // lattice_gradient_moment: pressure forces are divided by it
   double rho0 = 0;
   double k = 0;                 // Tait stiffness (Pa)
   double c0 = 0;                // speed of sound (m/s): k = rho0 c0^2 / gamma

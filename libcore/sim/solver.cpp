@@ -204,8 +204,8 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   const double pi = std::numbers::pi;
   P.h = static_cast<float>(p.h);
   P.h2 = static_cast<float>(p.h * p.h);
-  P.poly6 = static_cast<float>(315.0 / (64.0 * pi * std::pow(p.h, 9)));
   P.spiky = static_cast<float>(15.0 / (pi * std::pow(p.h, 6)));
+  P.grad_scale = static_cast<float>(1.0 / p.gradient_moment);
   P.visc = static_cast<float>(45.0 / (pi * std::pow(p.h, 6)));
   P.mass = static_cast<float>(p.mass);
   P.rho0 = static_cast<float>(p.rho0);

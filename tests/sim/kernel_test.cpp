@@ -1,7 +1,8 @@
 // The SPH kernels of shaders/sph_common.h (the same code the device runs): each
 // integrates to 1, gradients cancel over a full neighbourhood, the first moment of the
-// gradient is -I and the viscosity Laplacian recovers lap(x^2) = 2, the lattice mass
-// gives rho0, and the Tait energy is the integral of p / rho^2.
+// gradient is -I and the viscosity Laplacian recovers lap(x^2) = 2; the lattice mass
+// gives rho0 and the lattice gradient correction makes the first moment exactly -I;
+// the Tait energy is the integral of p / rho^2.
 #include <cmath>
 #include <numbers>
 
@@ -126,17 +127,51 @@ TEST(Kernels, LatticeMassGivesRestDensity) {
     const double h = 2 * spacing, rho0 = 998;
     const double mass = rho0 / lattice_kernel_sum(spacing, h);
     // Recompute the density of a lattice particle with the float kernel the device uses.
-    const float poly6 = static_cast<float>(poly6_coefficient(h));
     double rho = 0;
     for (int k = -2; k <= 2; ++k)
       for (int j = -2; j <= 2; ++j)
         for (int i = -2; i <= 2; ++i)
-          rho += mass * bw_poly6(float(spacing * spacing * (i * i + j * j + k * k)), float(h * h), poly6);
+          rho += mass * bw_spiky(float(spacing * std::sqrt(double(i * i + j * j + k * k))), float(h));
     EXPECT_NEAR(rho / rho0, 1.0, 1e-6) << "spacing " << spacing;
     test::figure("particle mass at spacing " + std::to_string(spacing), mass, "kg");
-    // About rho0 spacing^3: the lattice sum is within a few percent of the integral.
-    EXPECT_NEAR(mass / (rho0 * spacing * spacing * spacing), 1.0, 0.03);
+    test::figure("particle mass / (rho0 spacing^3)", mass / (rho0 * spacing * spacing * spacing));
+    // W_spiky is coarse at h = 2 spacings: its lattice sum is 24% above the integral.
+    EXPECT_NEAR(mass / (rho0 * spacing * spacing * spacing), 1 / 1.2359, 1e-3);
   }
+}
+
+TEST(Kernels, GradientCorrectionMakesTheLatticeMomentExact) {
+  for (int ratio : {2, 3, 4}) {
+    const double spacing = kH / ratio;
+    const double c = lattice_gradient_moment(spacing, kH);
+    const double volume = 1.0 / lattice_kernel_sum(spacing, kH);
+    Mat3d moment = Mat3d::Zero();
+    for (int k = -ratio; k <= ratio; ++k)
+      for (int j = -ratio; j <= ratio; ++j)
+        for (int i = -ratio; i <= ratio; ++i) {
+          const Vec3d x = -spacing * Vec3d(i, j, k);
+          moment += volume / c * x * (bw_spiky_grad_factor(float(x.norm()), float(kH)) * x).transpose();
+        }
+    test::figure("spiky gradient moment c at h = " + std::to_string(ratio) + " spacings", c);
+    EXPECT_LT((moment + Mat3d::Identity()).cwiseAbs().maxCoeff(), 1e-5) << moment;
+  }
+  EXPECT_NEAR(lattice_gradient_moment(0.01, 0.02), 0.7738, 1e-3);
+}
+
+TEST(Kernels, CalibratedBoundaryWeight) {
+  // Mirrors the calibration by hand at h = 2 spacings, where only the layer one
+  // spacing away (the wall's) is missing and spiky vanishes at 2 spacings.
+  const double s = 0.01, h = 0.02;
+  double own = 0, full = 0;
+  for (int k = -2; k <= 2; ++k)
+    for (int j = -2; j <= 2; ++j)
+      for (int i = -2; i <= 2; ++i) {
+        const double w = bw_spiky(float(s * std::sqrt(double(i * i + j * j + k * k))), float(h));
+        full += w;
+        if (k == 0) own += w;
+      }
+  test::figure("calibrated gamma1", calibrated_gamma1(s, h));
+  EXPECT_NEAR(calibrated_gamma1(s, h), own / full, 1e-5);
 }
 
 TEST(Tait, PressureAndEnergy) {

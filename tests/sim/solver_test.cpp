@@ -77,7 +77,8 @@ TEST(Grid, NeighboursEqualBruteForce) {
 }
 
 // Density, Psi_b and acceleration by O(N^2) double sums of the formulas in
-// shaders/fluid.cl (method.md 1, 2 with the poly6 gradient).
+// shaders/fluid.cl (method.md 1, 2 with W_spiky for the density and its gradient for
+// the pressure forces, divided by the lattice moment c).
 struct Reference {
   std::vector<double> psi, rho, p;
   std::vector<Vec3d> a;
@@ -85,11 +86,11 @@ struct Reference {
 
 Reference brute_force(const Solver::Snapshot& S, const Parameters& P) {
   const double h = P.h, h2 = h * h, pi = std::numbers::pi;
-  const double poly6 = 315 / (64 * pi * std::pow(h, 9)), visc = 45 / (pi * std::pow(h, 6));
-  auto w = [&](double r2) { return r2 < h2 ? poly6 * std::pow(h2 - r2, 3) : 0.0; };
-  auto grad = [&](const Vec3d& x) {  // grad W_poly6(x) with respect to the first particle
-    const double r2 = x.squaredNorm();
-    return r2 < h2 ? Vec3d(-6 * poly6 * std::pow(h2 - r2, 2) * x) : Vec3d::Zero();
+  const double visc = 45 / (pi * std::pow(h, 6)), spiky = 15 / (pi * std::pow(h, 6));
+  auto ws = [&](double r2) { return r2 < h2 ? spiky * std::pow(h - std::sqrt(r2), 3) : 0.0; };
+  auto grad_s = [&](const Vec3d& x) {  // grad W_spiky(x) with respect to the first particle
+    const double r = x.norm();
+    return r < h && r > 0 ? Vec3d(-3 * spiky * (h - r) * (h - r) / r * x) : Vec3d::Zero();
   };
   const std::size_t n = S.x.size(), nb = S.bx.size();
   auto fx = [&](std::size_t i) { return Vec3d(S.x[i], S.y[i], S.z[i]); };
@@ -99,15 +100,15 @@ Reference brute_force(const Solver::Snapshot& S, const Parameters& P) {
   for (std::size_t b = 0; b < nb; ++b) {
     double sum = 0;
     for (std::size_t k = 0; k < nb; ++k)
-      if (S.bsolid[k] == S.bsolid[b]) sum += w((bxv(b) - bxv(k)).squaredNorm());
+      if (S.bsolid[k] == S.bsolid[b]) sum += ws((bxv(b) - bxv(k)).squaredNorm());
     R.psi[b] = P.rho0 / sum;
   }
   R.rho.resize(n);
   R.p.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     double sf = 0, sb = 0;
-    for (std::size_t j = 0; j < n; ++j) sf += w((fx(i) - fx(j)).squaredNorm());
-    for (std::size_t b = 0; b < nb; ++b) sb += R.psi[b] * w((fx(i) - bxv(b)).squaredNorm());
+    for (std::size_t j = 0; j < n; ++j) sf += ws((fx(i) - fx(j)).squaredNorm());
+    for (std::size_t b = 0; b < nb; ++b) sb += R.psi[b] * ws((fx(i) - bxv(b)).squaredNorm());
     R.rho[i] = P.mass * sf + P.gamma1 * sb;
     R.p[i] = std::max(0.0, P.k * (std::pow(R.rho[i] / P.rho0, P.gamma) - 1));
   }
@@ -121,13 +122,14 @@ Reference brute_force(const Solver::Snapshot& S, const Parameters& P) {
       if (j == i || r >= h) continue;
       const double Pj = R.p[j] / (R.rho[j] * R.rho[j]);
       const Vec3d vj(S.vx[j], S.vy[j], S.vz[j]);
-      R.a[i] += -P.mass * (Pi + Pj) * grad(x) + P.mu / R.rho[i] * P.mass * (vj - vi) / R.rho[j] * visc * (h - r);
+      R.a[i] += -P.mass * (Pi + Pj) * grad_s(x) / P.gradient_moment +
+                P.mu / R.rho[i] * P.mass * (vj - vi) / R.rho[j] * visc * (h - r);
     }
     for (std::size_t b = 0; b < nb; ++b) {
       const Vec3d x = fx(i) - bxv(b);
       const double r = x.norm();
       if (r >= h) continue;
-      R.a[i] += -P.gamma2 * R.psi[b] * (Pi + R.p[i] / (P.rho0 * P.rho0)) * grad(x) +
+      R.a[i] += -P.gamma2 * R.psi[b] * (Pi + R.p[i] / (P.rho0 * P.rho0)) * grad_s(x) / P.gradient_moment +
                 P.mu_b / R.rho[i] * R.psi[b] / P.rho0 * (-vi) * visc * (h - r);
     }
   }
@@ -202,6 +204,37 @@ TEST(Fluid, FullLatticeHasRestDensity) {
   test::figure("interior particles", static_cast<double>(interior));
   test::figure("largest |rho/rho0 - 1| inside a full lattice", worst);
   EXPECT_LT(worst, 1e-5);
+}
+
+TEST(Fluid, FluidNextToAFlatWallHasRestDensity) {
+  // The default gamma1 is calibrated for exactly this: one spacing from a flat wall.
+  test::TempDir dir;
+  test::write_tank(dir.file("tank.h5"), {16, 16, 8}, 0.01);
+  std::ofstream(dir.file("scene.toml")) << "spacing = 0.01\n[time]\nend = 0.1\n[domain]\nmin = [-0.02, -0.02, -0.02]\n"
+                                           "max = [0.19, 0.19, 0.11]\n[fluid]\nc0 = 20\n[[fluid.block]]\n"
+                                           "min = [0.01, 0.01, 0.01]\nmax = [0.16, 0.16, 0.06]\n"
+                                           "[[solid]]\nparticles = \"tank.h5\"\n";
+  const sim::Setup setup = prepare(scene::load_scene(dir.file("scene.toml")), 0.1);
+  test::figure("calibrated gamma1 at h = 2 spacings", setup.params.gamma1);
+  EXPECT_NEAR(setup.params.gamma1, calibrated_gamma1(0.01, 0.02), 1e-12);
+  Solver solver(setup, context());
+  const Solver::Snapshot S = solver.snapshot();
+  const double h = setup.params.h;
+  std::size_t floor_layer = 0;
+  double worst = 0, worst_anywhere = 0;
+  for (std::size_t i = 0; i < S.x.size(); ++i) {
+    worst_anywhere = std::max(worst_anywhere, S.rho[i] / setup.params.rho0 - 1);
+    // The first layer above the floor, at least h from the side walls.
+    if (S.z[i] < 0.02 && S.x[i] > 0.01 + h && S.x[i] < 0.16 - h && S.y[i] > 0.01 + h && S.y[i] < 0.16 - h) {
+      ++floor_layer;
+      worst = std::max(worst, std::abs(S.rho[i] / setup.params.rho0 - 1));
+    }
+  }
+  ASSERT_GT(floor_layer, 50u);
+  test::figure("largest |rho/rho0 - 1| one spacing from a flat wall", worst);
+  test::figure("largest rho/rho0 - 1 anywhere (edges, corners)", worst_anywhere);
+  EXPECT_LT(worst, 1e-5);
+  EXPECT_LT(worst_anywhere, 0.01) << "fluid in edges and corners starts nearly at rest too";
 }
 
 }  // namespace
