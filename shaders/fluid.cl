@@ -189,13 +189,29 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
 // Symplectic Euler: v += a dt, then x += v dt with the new velocity. Contact: a
 // particle touching a wall (normal n != 0) loses the part of its velocity that goes
 // into the wall, so that no step carries it through the wall's single layer of
-// particles (a fast splash could otherwise cross it between two steps).
+// particles (a fast splash could otherwise cross it between two steps). A particle
+// held by emitter e (hold = e + 1) moves with the emitter's velocity instead, and is
+// let go once it is the hold distance beyond the emitter's plane.
 __kernel void fluid_integrate(uint n, float dt, __global float* x, __global float* y, __global float* z,
                               __global float* vx, __global float* vy, __global float* vz, __global const float* ax,
                               __global const float* ay, __global const float* az, __global const float* nx,
-                              __global const float* ny, __global const float* nz) {
+                              __global const float* ny, __global const float* nz, __global uint* hold,
+                              __global const EmitterParams* emitters) {
   const uint i = get_global_id(0);
   if (i >= n) return;
+  const uint held = hold[i];
+  if (held > 0) {
+    const EmitterParams e = emitters[held - 1];
+    const float px = x[i] + e.nx * e.speed * dt, py = y[i] + e.ny * e.speed * dt, pz = z[i] + e.nz * e.speed * dt;
+    vx[i] = e.nx * e.speed;
+    vy[i] = e.ny * e.speed;
+    vz[i] = e.nz * e.speed;
+    x[i] = px;
+    y[i] = py;
+    z[i] = pz;
+    if ((px - e.cx) * e.nx + (py - e.cy) * e.ny + (pz - e.cz) * e.nz >= e.hold) hold[i] = 0;
+    return;
+  }
   float ux = vx[i] + ax[i] * dt, uy = vy[i] + ay[i] * dt, uz = vz[i] + az[i] * dt;
   const float into = ux * nx[i] + uy * ny[i] + uz * nz[i];
   if (into < 0.0f) {
@@ -279,11 +295,13 @@ __kernel void fluid_frame_reduce(SimParams P, uint n, uint chunk, uint nblocks, 
 }
 
 // Writes `count` new particles at slots first.. : emitter lattice points
-// px/py/pz[point0 + k] moved by (ox, oy, oz), velocity (ux, uy, uz), ids first_id + k.
-__kernel void fluid_emit(uint count, uint first, uint first_id, uint point0, __global const float* px,
+// px/py/pz[point0 + k] moved by (ox, oy, oz), velocity (ux, uy, uz), ids first_id + k,
+// held by emitter `emitter` (hold = emitter + 1).
+__kernel void fluid_emit(uint count, uint first, uint first_id, uint point0, uint emitter, __global const float* px,
                          __global const float* py, __global const float* pz, float ox, float oy, float oz, float ux,
                          float uy, float uz, __global float* x, __global float* y, __global float* z,
-                         __global float* vx, __global float* vy, __global float* vz, __global uint* id) {
+                         __global float* vx, __global float* vy, __global float* vz, __global uint* id,
+                         __global uint* hold) {
   const uint k = get_global_id(0);
   if (k >= count) return;
   const uint i = first + k;
@@ -294,4 +312,5 @@ __kernel void fluid_emit(uint count, uint first, uint first_id, uint point0, __g
   vy[i] = uy;
   vz[i] = uz;
   id[i] = first_id + k;
+  hold[i] = emitter + 1;
 }

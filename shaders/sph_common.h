@@ -55,6 +55,17 @@ typedef struct {
   int ncells;       // nx * ny * nz; the key of a removed particle
 } SimParams;
 
+// An emitter as the integration sees it: the particles it injects move with the
+// emitter's velocity, ignoring forces, until they are `hold` beyond its plane, so
+// that the fluid leaves the emitter like a piston pushes it and a new layer never
+// lands on the previous one.
+typedef struct {
+  float cx, cy, cz;   // a point of the emitter's plane (its centre)
+  float nx, ny, nz;   // unit normal, the direction of the flow
+  float speed;        // m/s
+  float hold;         // m
+} EmitterParams;
+
 // Per-block results of the reduction that runs every step (adaptive dt and guard).
 typedef struct {
   float max_v2;     // largest |v|^2

@@ -190,6 +190,7 @@ Setup prepare(const scene::Scene& s, double end_time) {
     lattice.points = emitter_points(e, p.spacing);
     if (lattice.points.empty())
       fail_input("{}: fluid.emitter[{}]: holds no particle at spacing {}", s.path, i, p.spacing);
+    lattice.center = e.center;
     lattice.normal = e.normal;
     lattice.speed = e.speed;
     lattice.start = e.start;

@@ -64,6 +64,7 @@ struct ParticleArrays {
 // The lattice of one emitter and its schedule.
 struct EmitterLattice {
   std::vector<Vec3d> points;    // one layer, on the emitter's plane
+  Vec3d center = Vec3d::Zero();
   Vec3d normal = Vec3d::UnitZ();
   double speed = 0, start = 0, stop = 0;  // stop clipped to the end of the run
   // Layers emitted by time t: one each time the fluid has moved one spacing.

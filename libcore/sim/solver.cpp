@@ -57,7 +57,7 @@ struct Solver::Impl {
   std::unique_ptr<compute::RadixSort> sort;
 
   // fluid
-  std::array<Buffer, 2> x, y, z, vx, vy, vz, id;
+  std::array<Buffer, 2> x, y, z, vx, vy, vz, id, hold;
   int front = 0;
   Buffer keys, values, keys_tmp, values_tmp;
   Buffer rho, pres, pterm, vol, phi, ax, ay, az, nx, ny, nz, start;
@@ -71,7 +71,7 @@ struct Solver::Impl {
   std::vector<EmitterLattice> emitters;
   std::vector<std::uint32_t> emitter_first_point;
   std::vector<std::int64_t> emitter_layers;
-  Buffer ex, ey, ez;
+  Buffer ex, ey, ez, emitter_table;
   bool capped = false;
 
   // state
@@ -108,7 +108,8 @@ struct Solver::Impl {
       fluid_keys.args(P, n, x[f], y[f], z[f], keys, values);
       ctx.launch(fluid_keys, n);
       sort->sort(keys, values, keys_tmp, values_tmp, n, ncells);
-      reorder.args(n, values, x[f], y[f], z[f], vx[f], vy[f], vz[f], id[f], x[b], y[b], z[b], vx[b], vy[b], vz[b], id[b]);
+      reorder.args(n, values, x[f], y[f], z[f], vx[f], vy[f], vz[f], id[f], hold[f], x[b], y[b], z[b], vx[b], vy[b],
+                   vz[b], id[b], hold[b]);
       ctx.launch(reorder, n);
       front = b;
     }
@@ -170,9 +171,10 @@ struct Solver::Impl {
           const Vec3d o = em.normal * offset;
           const Vec3d v = em.normal * em.speed;
           const int f = front;
-          emit.args(count, n, next_id, emitter_first_point[e], ex, ey, ez, static_cast<float>(o.x()),
-                    static_cast<float>(o.y()), static_cast<float>(o.z()), static_cast<float>(v.x()),
-                    static_cast<float>(v.y()), static_cast<float>(v.z()), x[f], y[f], z[f], vx[f], vy[f], vz[f], id[f]);
+          emit.args(count, n, next_id, emitter_first_point[e], static_cast<std::uint32_t>(e), ex, ey, ez,
+                    static_cast<float>(o.x()), static_cast<float>(o.y()), static_cast<float>(o.z()),
+                    static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z()), x[f], y[f], z[f],
+                    vx[f], vy[f], vz[f], id[f], hold[f]);
           ctx.launch(emit, count);
           n += count;
           next_id += count;
@@ -234,7 +236,7 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   P.ncells = static_cast<int>(s.ncells);
 
   // Refuse what cannot fit before allocating anything.
-  const std::uint64_t per_particle = 29 * sizeof(float);
+  const std::uint64_t per_particle = 31 * sizeof(float);
   const std::uint64_t nb_all = setup.boundary.particles.size();
   const std::uint64_t estimate = (s.capacity + kPad) * per_particle + 2 * (cells + 1) * sizeof(std::uint32_t) +
                                  (nb_all + kPad) * 12 * sizeof(float);
@@ -273,6 +275,7 @@ Solver::Solver(const Setup& setup, compute::Context& context)
     s.vy[k] = s.floats(cap, fmt::format("fluid vy ({})", names[k]));
     s.vz[k] = s.floats(cap, fmt::format("fluid vz ({})", names[k]));
     s.id[k] = s.uints(cap, fmt::format("fluid id ({})", names[k]));
+    s.hold[k] = s.uints(cap, fmt::format("fluid emitter hold ({})", names[k]));
   }
   s.keys = s.uints(cap, "fluid keys");
   s.values = s.uints(cap, "fluid order");
@@ -364,6 +367,23 @@ Solver::Solver(const Setup& setup, compute::Context& context)
       pz.push_back(static_cast<float>(q.z()));
     }
   }
+  // What the integration needs of each emitter: particles are held for h.
+  std::vector<EmitterParams> table;
+  for (const EmitterLattice& e : s.emitters) {
+    EmitterParams q{};
+    const Vec3d c = e.points.empty() ? Vec3d::Zero() : e.center;
+    q.cx = static_cast<float>(c.x());
+    q.cy = static_cast<float>(c.y());
+    q.cz = static_cast<float>(c.z());
+    q.nx = static_cast<float>(e.normal.x());
+    q.ny = static_cast<float>(e.normal.y());
+    q.nz = static_cast<float>(e.normal.z());
+    q.speed = static_cast<float>(e.speed);
+    q.hold = static_cast<float>(p.h);
+    table.push_back(q);
+  }
+  s.emitter_table = context.buffer(std::max<std::size_t>(1, table.size()) * sizeof(EmitterParams), "emitters");
+  context.write_vector(s.emitter_table, table);
   s.ex = s.floats(px.size(), "emitter points x");
   s.ey = s.floats(py.size(), "emitter points y");
   s.ez = s.floats(pz.size(), "emitter points z");
@@ -423,7 +443,7 @@ StepInfo Solver::step(double t_target) {
   }
 
   s.integrate.args(s.n, static_cast<float>(dt), s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.ax, s.ay, s.az,
-                   s.nx, s.ny, s.nz);
+                   s.nx, s.ny, s.nz, s.hold[f], s.emitter_table);
   s.ctx.launch(s.integrate, s.n);
   s.grid_valid = false;
   s.t = lands ? t_target : s.t + dt;
@@ -450,10 +470,10 @@ std::uint64_t Solver::device_bytes() const {
   std::uint64_t total = 0;
   for (int k = 0; k < 2; ++k)
     total += s.x[k].bytes() + s.y[k].bytes() + s.z[k].bytes() + s.vx[k].bytes() + s.vy[k].bytes() + s.vz[k].bytes() +
-             s.id[k].bytes();
+             s.id[k].bytes() + s.hold[k].bytes();
   for (const Buffer* b : {&s.keys, &s.values, &s.keys_tmp, &s.values_tmp, &s.rho, &s.pres, &s.pterm, &s.vol, &s.phi, &s.ax,
                           &s.ay, &s.az, &s.nx, &s.ny, &s.nz, &s.start, &s.bx, &s.by, &s.bz, &s.bpsi, &s.bvx, &s.bvy, &s.bvz, &s.bsolid,
-                          &s.bstart, &s.step_out, &s.frame_out, &s.ex, &s.ey, &s.ez})
+                          &s.bstart, &s.step_out, &s.frame_out, &s.ex, &s.ey, &s.ez, &s.emitter_table})
     total += b->bytes();
   return total + s.sort->scratch_bytes();
 }

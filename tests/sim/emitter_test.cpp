@@ -1,0 +1,128 @@
+// Emitters inject the particles their flow rate gives (area x speed x time / spacing^3,
+// up to the lattice of the emitter's face), stop at max_particles, and walls stop
+// particles shot at them at any speed up to c0.
+#include <cmath>
+#include <fstream>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "io/frame_file.h"
+#include "io/run_file.h"
+#include "scene/scene.h"
+#include "sim/setup.h"
+#include "sim_fixtures.h"
+#include "test_support.h"
+
+namespace bw {
+namespace {
+
+constexpr double kSpacing = 0.01;
+
+std::string emitter_scene(const std::string& emitter, const std::string& fluid_extra = "") {
+  return R"(
+spacing = 0.01
+gravity = [0, 0, 0]
+[time]
+end = 0.5
+frame_rate = 20
+[domain]
+min = [-0.3, -0.3, -0.1]
+max = [0.3, 0.3, 1.0]
+[fluid]
+c0 = 20
+)" + fluid_extra + R"(
+[[fluid.emitter]]
+)" + emitter;
+}
+
+TEST(Emitter, DiscInjectsWhatItsFlowRateGives) {
+  test::TempDir dir;
+  const double radius = 0.05, speed = 1.0, start = 0.1, stop = 0.4;
+  std::ofstream(dir.file("disc.toml")) << emitter_scene(
+      "shape = \"disc\"\ncenter = [0, 0, 0]\nnormal = [0, 0, 1]\nradius = 0.05\nspeed = 1.0\nstart = 0.1\nstop = 0.4\n");
+  const scene::Scene scene = scene::load_scene(dir.file("disc.toml"));
+  const std::size_t per_layer = sim::emitter_points(scene.emitters.at(0), kSpacing).size();
+  const sim::RunSummary summary = test::run_scene(dir.file("disc.toml"), dir.file("out"));
+  const RunRecord run = read_run(dir.file("out/run.h5"));
+
+  // One layer each time the fluid has moved one spacing.
+  const auto layers = static_cast<std::size_t>(std::floor(speed * (stop - start) / kSpacing + 1e-9));
+  const double flow = std::numbers::pi * radius * radius * speed * (stop - start) / std::pow(kSpacing, 3);
+  test::figure("particles per layer", static_cast<double>(per_layer));
+  test::figure("injected", static_cast<double>(summary.fluid_end));
+  test::figure("area x speed x time / spacing^3", flow);
+  EXPECT_EQ(summary.fluid_end, static_cast<std::int64_t>(layers * per_layer));
+  EXPECT_NEAR(static_cast<double>(summary.fluid_end) / flow, 1.0, 0.05) << "the disc's lattice covers its area";
+  EXPECT_FALSE(summary.emitters_capped);
+
+  // Over time: nothing before start, the rate in between, nothing after stop.
+  for (const FrameStats& s : run.frames) {
+    const double active = std::clamp(s.time, start, stop) - start;
+    const auto expected = static_cast<std::int64_t>(std::floor(speed * active / kSpacing + 1e-9) * per_layer);
+    EXPECT_NEAR(static_cast<double>(s.fluid), static_cast<double>(expected), static_cast<double>(per_layer))
+        << "t = " << s.time;
+  }
+  // Without gravity the jet coasts at the emitter's speed, layers one spacing apart.
+  const FrameData last = read_frame(frame_file_name(dir.file("out/frames"), 10));
+  float zmax = 0;
+  for (std::size_t i = 0; i < last.fluid_count(); ++i) {
+    zmax = std::max(zmax, last.z[i]);
+    EXPECT_NEAR(last.vz[i], speed, 1e-3 * speed);
+  }
+  EXPECT_NEAR(zmax, speed * (0.5 - start) - kSpacing, 0.5 * kSpacing) << "first layer left at start + spacing / speed";
+}
+
+TEST(Emitter, RectangleAndMaxParticles) {
+  test::TempDir dir;
+  std::ofstream(dir.file("rect.toml")) << emitter_scene(
+      "shape = \"rectangle\"\ncenter = [0, 0, 0.2]\nnormal = [0, 0, 1]\nsize = [0.08, 0.05]\nup = [1, 0, 0]\nspeed = 1.0\n",
+      "max_particles = 1000\n");
+  const sim::RunSummary summary = test::run_scene(dir.file("rect.toml"), dir.file("out"));
+  // 8 x 5 points per layer, 50 layers over 0.5 s at 1 m/s: 2000 wanted, 1000 allowed.
+  test::figure("injected (max_particles 1000)", static_cast<double>(summary.fluid_end));
+  EXPECT_EQ(summary.fluid_end, 1000);
+  EXPECT_TRUE(summary.emitters_capped);
+  const FrameData d = read_frame(frame_file_name(dir.file("out/frames"), 2));
+  ASSERT_EQ(d.fluid_count(), 8u * 5u * 10u) << "t = 0.1 s: 10 layers of 8 x 5";
+  float xmin = 1, xmax = -1, ymin = 1, ymax = -1;
+  for (std::size_t i = 0; i < d.fluid_count(); ++i) {
+    xmin = std::min(xmin, d.x[i]), xmax = std::max(xmax, d.x[i]);
+    ymin = std::min(ymin, d.y[i]), ymax = std::max(ymax, d.y[i]);
+  }
+  EXPECT_NEAR(ymax - ymin, 0.07, 2e-3) << "size[0] along up x normal";
+  EXPECT_NEAR(xmax - xmin, 0.04, 2e-3) << "size[1] along up";
+}
+
+TEST(Walls, StopParticlesShotAtThemUpToTheSpeedOfSound) {
+  test::TempDir dir;
+  test::write_tank(dir.file("tank.h5"), {10, 10, 10}, kSpacing);
+  // Single particles and small blocks aimed at walls, edges and corners, straight
+  // onto a wall particle and between them, up to c0 = 30 m/s.
+  const char* shots[][2] = {{"[0.05, 0.05, 0.05], [0.06, 0.06, 0.06]", "[0, 0, 30]"},
+                            {"[0.045, 0.045, 0.045], [0.055, 0.055, 0.055]", "[0, 0, 29]"},
+                            {"[0.045, 0.045, 0.045], [0.055, 0.055, 0.055]", "[-20, -10, 25]"},
+                            {"[0.03, 0.03, 0.03], [0.07, 0.07, 0.07]", "[17, 17, 17]"},
+                            {"[0.02, 0.02, 0.02], [0.05, 0.08, 0.08]", "[-25, 3, 0]"}};
+  int k = 0;
+  for (const auto& shot : shots) {
+    const std::string name = "shot" + std::to_string(k++);
+    std::string box(shot[0]);
+    const std::size_t split = box.find("], [");
+    std::ofstream(dir.file(name + ".toml"))
+        << "spacing = 0.01\ngravity = [0, 0, 0]\n[time]\nend = 0.03\nframe_rate = 100\n[domain]\n"
+           "min = [-0.03, -0.03, -0.03]\nmax = [0.14, 0.14, 0.14]\n[fluid]\nc0 = 30\n[[fluid.block]]\nmin = "
+        << box.substr(0, split + 1) << "\nmax = " << box.substr(split + 3) << "\nvelocity = " << shot[1]
+        << "\n[[solid]]\nparticles = \"tank.h5\"\n";
+    const sim::RunSummary summary = test::run_scene(dir.file(name + ".toml"), dir.file(name));
+    EXPECT_EQ(summary.removed, 0) << name << ": block " << shot[0] << " at " << shot[1] << " m/s";
+    const FrameData d = read_frame(frame_file_name(dir.file(name + "/frames"), 3));
+    for (std::size_t i = 0; i < d.fluid_count(); ++i) {
+      const Vec3d q(d.x[i], d.y[i], d.z[i]);
+      EXPECT_TRUE((q.array() > 0.005).all() && (q.array() < 0.105).all()) << name << ": " << q.transpose();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace bw
