@@ -1,0 +1,167 @@
+// bw-sim end to end: the same scene twice gives bit-identical frames; every bad input
+// exits with 2 and one line, writing nothing; a blow-up stops with 1 and a message
+// naming the step, time and particle, keeping the frames written before.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "io/frame_file.h"
+#include "io/run_file.h"
+#include "sim_fixtures.h"
+#include "test_support.h"
+
+namespace bw {
+namespace {
+namespace fs = std::filesystem;
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string bw_sim() { return test::tool("bw-sim"); }
+
+// A small dam break in a tank, written into `dir`.
+void write_small_dambreak(const test::TempDir& dir, const std::string& extra_time = "") {
+  test::write_tank(dir.file("tank.h5"), {20, 4, 16}, 0.01);
+  std::ofstream(dir.file("scene.toml")) << "spacing = 0.01\n[time]\nend = 0.15\nframe_rate = 40\n" << extra_time
+                                        << "[domain]\nmin = [-0.05, -0.05, -0.05]\nmax = [0.26, 0.1, 0.22]\n"
+                                           "[[fluid.block]]\nmin = [0.01, 0.01, 0.01]\nmax = [0.07, 0.04, 0.13]\n"
+                                           "[[solid]]\nparticles = \"tank.h5\"\n"
+                                           "[output]\nfields = [\"velocity\", \"density\", \"pressure\", \"id\", \"boundary\"]\n";
+}
+
+TEST(BwSim, SameSceneTwiceGivesBitIdenticalFrames) {
+  test::TempDir dir;
+  write_small_dambreak(dir);
+  for (const char* out : {"a", "b"}) {
+    const auto r = test::run(bw_sim() + " " + dir.file("scene.toml") + " -o " + dir.file(out) + " --quiet");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(r.err.empty()) << "--quiet prints nothing: " << r.err;
+  }
+  const std::string frames_a = test::list_folder(dir.file("a/frames"));
+  ASSERT_EQ(frames_a, "000000.h5 000001.h5 000002.h5 000003.h5 000004.h5 000005.h5 000006.h5");
+  ASSERT_EQ(frames_a, test::list_folder(dir.file("b/frames")));
+  for (int f = 0; f <= 6; ++f) {
+    const std::string a = slurp(frame_file_name(dir.file("a/frames"), f));
+    EXPECT_FALSE(a.empty());
+    EXPECT_TRUE(a == slurp(frame_file_name(dir.file("b/frames"), f))) << "frame " << f << " differs";
+  }
+  // The frames hold what the scene asked for, in the H5Part layout.
+  const FrameData d = read_frame(frame_file_name(dir.file("a/frames"), 6));
+  EXPECT_EQ(d.frame, 6);
+  EXPECT_DOUBLE_EQ(d.time, 0.15);
+  EXPECT_EQ(d.fluid_count(), 6u * 3u * 12u);
+  const FrameFields fields = d.fields();
+  EXPECT_TRUE(fields.velocity && fields.density && fields.pressure && fields.id && fields.boundary);
+  const RunRecord run = read_run(dir.file("a/run.h5"));
+  EXPECT_EQ(run.status, "complete");
+  EXPECT_EQ(run.frames.size(), 7u);
+  EXPECT_EQ(run.solids.size(), 1u);
+  EXPECT_EQ(run.solids[0].kind, "static");
+  EXPECT_NE(run.scene_text.find("[[fluid.block]]"), std::string::npos);
+  EXPECT_FALSE(run.device.empty());
+  EXPECT_FALSE(run.parameters.empty());
+}
+
+TEST(BwSim, EndTimeOptionAndSummary) {
+  test::TempDir dir;
+  write_small_dambreak(dir);
+  const auto r = test::run(bw_sim() + " " + dir.file("scene.toml") + " -o " + dir.file("out") + " --end-time 0.05");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(test::list_folder(dir.file("out/frames")), "000000.h5 000001.h5 000002.h5");
+  for (const char* word : {"steps", "particle-steps/s", "worst error", "energy"})
+    EXPECT_NE(r.err.find(word), std::string::npos) << "summary lacks '" << word << "':\n" << r.err;
+  // bw-info prints the per-frame statistics as JSON.
+  const auto info = test::run(test::tool("bw-info") + " " + dir.file("out/run.h5") + " --json");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  for (const char* column : {"\"frames\"", "density_error_max", "dt_min", "kinetic_energy", "wall_time"})
+    EXPECT_NE(info.out.find(column), std::string::npos) << column << " missing from:\n" << info.out.substr(0, 2000);
+}
+
+TEST(BwSim, ListsDevicesAndHelps) {
+  const auto list = test::run(bw_sim() + " --device list");
+  EXPECT_EQ(list.exit_code, 0) << list.err;
+  EXPECT_GE(test::line_count(list.out), 1);
+  const auto help = test::run(bw_sim() + " --help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("--device"), std::string::npos);
+  EXPECT_NE(help.out.find("Examples:"), std::string::npos);
+}
+
+// Each bad input: exit 2, one line on stderr naming what is wrong, no output folder.
+void expect_bad_input(const std::string& scene_text, const std::string& expected, const std::string& options = "") {
+  test::TempDir dir;
+  test::write_tank(dir.file("tank.h5"), {4, 4, 4}, 0.01);
+  write_frame(FrameData{}, dir.file("frame.h5"));
+  std::ofstream(dir.file("scene.toml")) << scene_text;
+  const auto r = test::run(bw_sim() + " " + dir.file("scene.toml") + " -o " + dir.file("out") + " " + options);
+  EXPECT_EQ(r.exit_code, 2) << scene_text << "\n" << r.err;
+  EXPECT_EQ(test::line_count(r.err), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("bw-sim: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(expected), std::string::npos) << "expected '" << expected << "' in: " << r.err;
+  EXPECT_FALSE(test::exists(dir.file("out"))) << "nothing may be written for: " << r.err;
+}
+
+const std::string kGood =
+    "spacing = 0.01\n[time]\nend = 0.1\n[domain]\nmin = [-0.01, -0.01, -0.01]\nmax = [0.06, 0.06, 0.06]\n"
+    "[[fluid.block]]\nmin = [0.01, 0.01, 0.01]\nmax = [0.03, 0.03, 0.03]\n";
+
+TEST(BwSim, BadInputsExitWithTwoAndWriteNothing) {
+  expect_bad_input("colour = 1\n" + kGood, "scene.toml: colour: unknown key");
+  expect_bad_input("spacing = -0.01\n" + kGood.substr(kGood.find('\n') + 1), "spacing: -0.01 must be positive");
+  expect_bad_input(kGood + "[[solid]]\nparticles = \"missing.h5\"\n", "solid[0].particles: missing.h5: no such file");
+  expect_bad_input(kGood + "[[solid]]\nparticles = \"frame.h5\"\n", "solid[0].particles:");
+  expect_bad_input(kGood + "[[solid]]\nparticles = \"tank.h5\"\nscale = 3\n", "coarser than");
+  expect_bad_input(kGood + "[fluid]\nmax_particles = 0\n", "fluid.max_particles: 0 must be at least 1");
+  expect_bad_input(kGood + "[fluid]\nmax_particles = 5\n", "fluid.max_particles: 5 is fewer than the 8 particles");
+  expect_bad_input(kGood + "[output]\nfields = [\"temperature\"]\n", "output.fields: 'temperature' is not a field");
+  expect_bad_input(kGood + "[time]\n", "scene.toml:");
+  expect_bad_input(kGood, "--device: 'fastest'", "--device fastest");
+  expect_bad_input(kGood, "--device 99", "--device 99");
+  expect_bad_input(kGood, "--end-time", "--end-time -1");
+  expect_bad_input(kGood.substr(0, kGood.find("[time]")) + "[time]\nend = 0.001\nframe_rate = 10\n" +
+                       kGood.substr(kGood.find("[domain]")),
+                   "time.end: 0.001 s is shorter than one frame");
+}
+
+TEST(BwSim, MissingSceneAndOutput) {
+  test::TempDir dir;
+  auto r = test::run(bw_sim() + " " + dir.file("none.toml") + " -o " + dir.file("out"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("none.toml: no such file"), std::string::npos) << r.err;
+  r = test::run(bw_sim() + " " + dir.file("none.toml"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("-o OUTDIR"), std::string::npos) << r.err;
+  EXPECT_FALSE(test::exists(dir.file("out")));
+}
+
+TEST(BwSim, BlowUpStopsWithOneAndKeepsEarlierFrames) {
+  test::TempDir dir;
+  // A fixed step 4 times what the speed of sound allows: the fluid explodes after
+  // a few frames.
+  write_small_dambreak(dir, "dt_min = 0.0015\ndt_max = 0.0015\n");
+  const auto r = test::run(bw_sim() + " " + dir.file("scene.toml") + " -o " + dir.file("out") + " --quiet");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(test::line_count(r.err), 1) << r.err;
+  for (const char* word : {"bw-sim: step ", "(t = ", "particle ", "blew up"})
+    EXPECT_NE(r.err.find(word), std::string::npos) << "'" << word << "' missing from: " << r.err;
+  const RunRecord run = read_run(dir.file("out/run.h5"));
+  EXPECT_NE(run.status.find("blew up"), std::string::npos) << run.status;
+  EXPECT_EQ(r.err, "bw-sim: " + run.status + "\n");
+  ASSERT_GE(run.frames.size(), 2u);
+  for (const FrameStats& s : run.frames) {
+    const FrameData d = read_frame(frame_file_name(dir.file("out/frames"), s.frame));
+    EXPECT_EQ(static_cast<std::int64_t>(d.fluid_count()), s.fluid) << "frame " << s.frame << " stays readable";
+  }
+  EXPECT_FALSE(test::exists(frame_file_name(dir.file("out/frames"), static_cast<int>(run.frames.size()))))
+      << "no frame after the blow-up";
+  test::figure("frames written before the blow-up", static_cast<double>(run.frames.size()));
+}
+
+}  // namespace
+}  // namespace bw
