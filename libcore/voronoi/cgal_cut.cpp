@@ -82,10 +82,14 @@ std::vector<std::vector<std::int32_t>> delaunay_neighbours(std::span<const Vec3d
 EK::Point_3 exact_point(const Vec3d& v) { return {v.x(), v.y(), v.z()}; }
 
 // The closed convex cell of `seed`: half-spaces of the bisector planes with the
-// neighbours and of the box, intersected in exact arithmetic. Each vertex is rounded
-// from its exact value, so a vertex shared by two cells becomes the same double in
-// both. Returned as the convex hull of the rounded vertices (closed, outward,
-// triangulated, no degenerate face).
+// neighbours and of the box, intersected in exact arithmetic (Epeck). Each vertex is
+// rounded from its exact value, so a vertex shared by two cells becomes the same
+// double in both, and symmetric set-ups (seeds mirrored in a plane of the mesh) give
+// cells that meet the mesh exactly where they should. Rounding from Epeck's interval
+// approximations instead builds the cells five times faster (measured: 0.57 s
+// instead of 2.7 s for 400 seeds on two threads) but lets shared vertices differ in
+// their last bits. Returned as the convex hull of the rounded vertices (closed,
+// outward, triangulated, no degenerate face).
 SurfaceMesh cell_mesh(const Vec3d& seed, std::span<const Vec3d> neighbours, const Aabb& box) {
   const EK::Point_3 s = exact_point(seed);
   std::vector<EK::Plane_3> planes;
