@@ -138,7 +138,7 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
         const vfloat dx = xi - VLOAD(x + j), dy = yi - VLOAD(y + j), dz = zi - VLOAD(z + j);
         const vfloat r2 = dx * dx + dy * dy + dz * dz;
         const vint ok = (r2 < h2) & (r2 > min_r2) & VIN_ROW(j, e);
-        const vfloat ir = rsqrt(fmax(r2, min_r2));
+        const vfloat ir = bw_rsqrt(fmax(r2, min_r2));
         const vfloat q = h - r2 * ir;
         const vfloat c = select((vfloat)0.0f, (pti + VLOAD(pterm + j)) * q * q * ir, ok);
         const vfloat w = select((vfloat)0.0f, q * VLOAD(vol + j), ok);
@@ -155,7 +155,7 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
         const vfloat r2 = dx * dx + dy * dy + dz * dz;
         const vint ok = (r2 < h2) & (r2 > min_r2) & VIN_ROW(j, be);
         const vfloat psi = VLOAD(bpsi + j);
-        const vfloat ir = rsqrt(fmax(r2, min_r2));
+        const vfloat ir = bw_rsqrt(fmax(r2, min_r2));
         const vfloat q = h - r2 * ir;
         const vfloat c = select((vfloat)0.0f, psi * q * q * ir, ok);
         const vfloat w = select((vfloat)0.0f, psi * q, ok);
