@@ -21,6 +21,9 @@ namespace {
 
 // Frame f is at f / frame_rate; the last one at or before the end (up to rounding).
 constexpr double kFrameSlack = 1e-9;
+// Largest compression (rho / rho0 - 1) the fluid may start with: a block placed one
+// spacing from walls starts below 1e-5; overlapping a solid gives tens of percent.
+constexpr double kMaxInitialCompression = 0.05;
 
 int last_frame(double end_time, double frame_rate) {
   return static_cast<int>(std::floor(end_time * frame_rate + kFrameSlack));
@@ -66,6 +69,20 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
   s.setup = prepare(scene, s.end_time);
   s.context = std::make_unique<compute::Context>(device);
   s.solver = std::make_unique<Solver>(s.setup, *s.context);
+
+  // Fluid placed on top of a solid or another block starts compressed, and a stiff
+  // fluid turns that into a blast at once: refuse it with the place to look at.
+  const FluidStats start = s.solver->stats();
+  if (start.density_error_max > kMaxInitialCompression) {
+    FrameFields density;
+    density.density = true;
+    const FrameData d = s.solver->frame(density, 0);
+    const auto worst = std::max_element(d.rho.begin(), d.rho.end()) - d.rho.begin();
+    fail_input("{}: fluid starts {:.0f}% compressed at ({:.4g}, {:.4g}, {:.4g}): a fluid block overlaps a solid or "
+               "another block (keep fluid one spacing from walls: boundary particles sit half a spacing inside a "
+               "mesh's faces)",
+               scene.path, 100 * start.density_error_max, d.x[worst], d.y[worst], d.z[worst]);
+  }
 }
 
 Simulation::~Simulation() = default;

@@ -118,6 +118,11 @@ TEST(BwSim, BadInputsExitWithTwoAndWriteNothing) {
   expect_bad_input(kGood + "[[solid]]\nparticles = \"frame.h5\"\n", "solid[0].particles:");
   expect_bad_input(kGood + "[[solid]]\nparticles = \"tank.h5\"\nscale = 3\n", "coarser than");
   expect_bad_input(kGood + "[fluid]\nmax_particles = 0\n", "fluid.max_particles: 0 must be at least 1");
+  expect_bad_input(kGood + "[[fluid.block]]\nmin = [0.015, 0.01, 0.01]\nmax = [0.035, 0.03, 0.03]\n",
+                   "% compressed at (");  // a second block half a spacing into the first
+  expect_bad_input(kGood.substr(0, kGood.find("[[fluid.block]]")) +
+                       "[[fluid.block]]\nmin = [0.0, 0.0, 0.0]\nmax = [0.03, 0.03, 0.03]\n[[solid]]\nparticles = \"tank.h5\"\n",
+                   "a fluid block overlaps a solid");
   expect_bad_input(kGood + "[fluid]\nmax_particles = 5\n", "fluid.max_particles: 5 is fewer than the 8 particles");
   expect_bad_input(kGood + "[output]\nfields = [\"temperature\"]\n", "output.fields: 'temperature' is not a field");
   expect_bad_input(kGood + "[time]\n", "scene.toml:");
