@@ -437,6 +437,8 @@ CutResult cut(const Solid& solid, std::span<const Vec3d> seeds, std::span<const 
   detail::parallel_for(groups.size(), threads, [&](std::size_t g) {
     try {
       SurfaceMesh hull = group_hull(groups[g], cells, moved, active);
+      // A hull that touches the solid where it is not convex: no piece, as for a cell.
+      if (touches_reflex_features(hull, solid.impl())) return;
       auto piece = std::make_shared<SurfaceMesh>(solid.impl().surface);
       if (PMP::corefine_and_compute_intersection(*piece, hull, *piece, kSelfIntersectionCheck) &&
           piece->number_of_faces() > 0) {
