@@ -114,6 +114,29 @@ void describe_steps(const h5::Group& root, Report& out) {
   }
 }
 
+void describe_fragments(const h5::Group& root, Report& out) {
+  const h5::Group g = root.open_group("fragment");
+  const auto volume = g.read<double>("volume");
+  const auto body = g.read<std::int32_t>("body");
+  out.set("fragments", static_cast<std::int64_t>(volume.size()));
+  out.set("seeds", static_cast<std::int64_t>(root.shape("seeds").empty() ? 0 : root.shape("seeds")[0]));
+  out.set("triangles", static_cast<std::int64_t>(root.shape("triangles")[0]));
+  double total = 0, smallest = volume.empty() ? 0 : volume[0], largest = smallest;
+  for (double v : volume) {
+    total += v;
+    smallest = std::min(smallest, v);
+    largest = std::max(largest, v);
+  }
+  out.set("total_volume", total);
+  out.set("smallest_volume", smallest);
+  out.set("largest_volume", largest);
+  std::int64_t matched = 0;
+  for (auto b : body) matched += b >= 0;
+  out.set("fragments_with_body", matched);
+  std::size_t rows = 0;
+  add_bounds(root.read_rows<double>("vertices", 3, &rows), out);
+}
+
 // A group of 1-D datasets of equal length is shown as a table, one row per element.
 bool describe_table(const h5::Group& group, const std::string& key, Report& out) {
   std::vector<std::string> columns;
@@ -152,6 +175,8 @@ Report describe_file(const std::string& path, const DescribeOptions& options) {
     describe_particles(root, summary);
   } else if (file.kind() == "frame") {
     describe_steps(root, summary);
+  } else if (file.kind() == "fragments") {
+    describe_fragments(root, summary);
   } else {
     // run, fragments and later kinds: every group of equal-length columns is a table.
     for (const std::string& name : root.children()) {
