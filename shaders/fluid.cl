@@ -108,12 +108,10 @@ __kernel void fluid_density(SimParams P, __global const uint* start, __global co
 __kernel void fluid_forces(SimParams P, __global const uint* start, __global const float* x,
                            __global const float* y, __global const float* z, __global const float* vx,
                            __global const float* vy, __global const float* vz, __global const float* rho,
-                           __global const float* pterm, __global const float* vol, __global const float* phi,
-                           __global const uint* bstart, __global const float* bx, __global const float* by,
+                           __global const float* pterm, __global const float* vol, __global const uint* bstart, __global const float* bx, __global const float* by,
                            __global const float* bz, __global const float* bpsi, __global const float* bvx,
                            __global const float* bvy, __global const float* bvz, __global float* ax,
-                           __global float* ay, __global float* az, __global float* nx, __global float* ny,
-                           __global float* nz) {
+                           __global float* ay, __global float* az) {
   const uint i = get_global_id(0);
   if (i >= start[P.ncells]) return;
   const float xi = x[i], yi = y[i], zi = z[i];
@@ -177,26 +175,29 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
   ax[i] = kp * VSUM(fx) + kv * VSUM(lx) + kbp * VSUM(bfx) + kbv * VSUM(blx) + P.gx;
   ay[i] = kp * VSUM(fy) + kv * VSUM(ly) + kbp * VSUM(bfy) + kbv * VSUM(bly) + P.gy;
   az[i] = kp * VSUM(fz) + kv * VSUM(lz) + kbp * VSUM(bfz) + kbv * VSUM(blz) + P.gz;
-  // The sum of Psi_b grad W_spiky points from the walls to the particle.
-  const float wx = VSUM(bfx), wy = VSUM(bfy), wz = VSUM(bfz);
-  const float wn = sqrt(wx * wx + wy * wy + wz * wz);
-  const bool contact = phi[i] > P.contact && wn > 0.0f;
-  nx[i] = contact ? wx / wn : 0.0f;
-  ny[i] = contact ? wy / wn : 0.0f;
-  nz[i] = contact ? wz / wn : 0.0f;
 }
 
-// Symplectic Euler: v += a dt, then x += v dt with the new velocity. Contact: a
-// particle touching a wall (normal n != 0) loses the part of its velocity that goes
-// into the wall, so that no step carries it through the wall's single layer of
-// particles (a fast splash could otherwise cross it between two steps). A particle
-// held by emitter e (hold = e + 1) moves with the emitter's velocity instead, and is
-// let go once it is the hold distance beyond the emitter's plane.
-__kernel void fluid_integrate(uint n, float dt, __global float* x, __global float* y, __global float* z,
+// Symplectic Euler: v += a dt, then x += v dt with the new velocity.
+//
+// Contact: a boundary particle b stands for a patch of its solid's surface, the disc
+// of radius P.patch around it in the plane through it normal to the surface (bn).
+// A particle near a solid (phi > 0) whose distance to such a plane is below
+// P.contact while it lies over the patch loses the part of its velocity that goes
+// into the surface (one pass over b, in the grid's order); sliding along the surface
+// is free. Fluid at rest lies one spacing from the surface's particles, beyond the
+// contact distance, and a CFL step moves a particle at most 0.4 spacings (at speeds up
+// to c0), so no step carries a particle through a solid's single layer of particles,
+// which method.md's boundary forces alone cannot promise. Where the normal is unknown
+// (parts thinner than a cell) the patch is a sphere of radius P.contact. Dissipative.
+//
+// A particle held by emitter e (hold = e + 1) moves with the emitter's velocity
+// instead, and is let go once it is the hold distance beyond the emitter's plane.
+__kernel void fluid_integrate(SimParams P, uint n, float dt, __global float* x, __global float* y, __global float* z,
                               __global float* vx, __global float* vy, __global float* vz, __global const float* ax,
-                              __global const float* ay, __global const float* az, __global const float* nx,
-                              __global const float* ny, __global const float* nz, __global uint* hold,
-                              __global const EmitterParams* emitters) {
+                              __global const float* ay, __global const float* az, __global const float* phi,
+                              __global const uint* bstart, __global const float* bx, __global const float* by,
+                              __global const float* bz, __global const float* bnx, __global const float* bny,
+                              __global const float* bnz, __global uint* hold, __global const EmitterParams* emitters) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const uint held = hold[i];
@@ -213,18 +214,46 @@ __kernel void fluid_integrate(uint n, float dt, __global float* x, __global floa
     return;
   }
   float ux = vx[i] + ax[i] * dt, uy = vy[i] + ay[i] * dt, uz = vz[i] + az[i] * dt;
-  const float into = ux * nx[i] + uy * ny[i] + uz * nz[i];
-  if (into < 0.0f) {
-    ux -= into * nx[i];
-    uy -= into * ny[i];
-    uz -= into * nz[i];
+  const float xi = x[i], yi = y[i], zi = z[i];
+  if (phi[i] > 0.0f) {
+    const int cx = bw_cell_coord(xi, P.ox, P.inv_cell, P.nx);
+    const int cy = bw_cell_coord(yi, P.oy, P.inv_cell, P.ny);
+    const int cz = bw_cell_coord(zi, P.oz, P.inv_cell, P.nz);
+    const int x0 = max(cx - 1, 0), x1 = min(cx + 1, P.nx - 1);
+    const float patch2 = P.patch * P.patch;
+    for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
+      for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
+        const int row = bw_cell_index(0, gy, gz, P.nx, P.ny);
+        const uint bs = bstart[row + x0], be = bstart[row + x1 + 1];
+        for (uint b = bs; b < be; ++b) {
+          const float dx = xi - bx[b], dy = yi - by[b], dz = zi - bz[b];
+          const float r2 = dx * dx + dy * dy + dz * dz;
+          float nx = bnx[b], ny = bny[b], nz = bnz[b];
+          float dn = dx * nx + dy * ny + dz * nz;
+          if (nx == 0.0f && ny == 0.0f && nz == 0.0f) {  // no normal: a sphere around b
+            if (r2 <= 0.0f) continue;
+            dn = sqrt(r2);
+            nx = dx / dn, ny = dy / dn, nz = dz / dn;
+          } else if (dn < 0.0f) {  // the particle is on the other side of the surface
+            dn = -dn, nx = -nx, ny = -ny, nz = -nz;
+          }
+          if (dn >= P.contact || r2 - dn * dn >= patch2) continue;
+          const float into = ux * nx + uy * ny + uz * nz;
+          if (into < 0.0f) {
+            ux -= into * nx;
+            uy -= into * ny;
+            uz -= into * nz;
+          }
+        }
+      }
+    }
   }
   vx[i] = ux;
   vy[i] = uy;
   vz[i] = uz;
-  x[i] += ux * dt;
-  y[i] += uy * dt;
-  z[i] += uz * dt;
+  x[i] = xi + ux * dt;
+  y[i] = yi + uy * dt;
+  z[i] = zi + uz * dt;
 }
 
 // Per block of `chunk` particles (all n particles of the step, including those that

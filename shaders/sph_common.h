@@ -45,7 +45,8 @@ typedef struct {
   float mu_b;       // boundary friction (Pa s)
   float gamma1;     // weight of the boundary term in the density
   float gamma2;     // weight of the boundary pressure force
-  float contact;    // boundary fraction above which a particle is in contact with a wall
+  float contact;    // contact distance to a solid's surface (m), fluid_integrate
+  float patch;      // radius of the surface patch a boundary particle stands for (m)
   float gx, gy, gz; // gravity (m/s^2)
   // grid: cubic cells of edge `cell` from `origin`; the domain is the grid's box
   float ox, oy, oz;

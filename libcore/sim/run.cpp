@@ -79,8 +79,8 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
     const FrameData d = s.solver->frame(density, 0);
     const auto worst = std::max_element(d.rho.begin(), d.rho.end()) - d.rho.begin();
     fail_input("{}: fluid starts {:.0f}% compressed at ({:.4g}, {:.4g}, {:.4g}): a fluid block overlaps a solid or "
-               "another block (keep fluid one spacing from walls: boundary particles sit half a spacing inside a "
-               "mesh's faces)",
+               "another block (fluid rests one spacing from a solid's boundary particles, which bw-sample puts within "
+               "half a spacing of the mesh's faces)",
                scene.path, 100 * start.density_error_max, d.x[worst], d.y[worst], d.z[worst]);
   }
 }

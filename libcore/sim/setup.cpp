@@ -9,6 +9,7 @@
 
 #include "common/error.h"
 #include "io/particles_file.h"
+#include "mesh/triangle_box.h"
 
 namespace bw::sim {
 namespace {
@@ -24,6 +25,10 @@ constexpr double kGuardSpeedFactor = 5.0;
 constexpr double kMaxSolidSpacingRatio = 1.5;
 // Largest neighbour grid: cell indices are 32-bit keys, start[] holds one per cell.
 constexpr std::int64_t kMaxGridCells = std::int64_t{1} << 30;
+// A surface cell covers a part thinner than itself (faces facing away from each
+// other) when the area-weighted mean of its triangles' normals keeps less than this
+// fraction of their total area (a cube's corner keeps 0.58, opposite faces 0).
+constexpr double kThinCell = 0.25;
 // Lattice counts are floor(length / spacing + this), so that a length of exactly n
 // spacings (up to rounding) gives n points.
 constexpr double kLatticeSlack = 1e-9;
@@ -109,6 +114,55 @@ double EmitterLattice::distance_by(double t) const {
 
 std::int64_t EmitterLattice::layers_by(double t, double spacing) const {
   return lattice_count(distance_by(t), spacing);
+}
+
+std::vector<Vec3d> surface_normals(const SampledSolid& solid) {
+  const SampleGrid& g = solid.grid;
+  const std::int64_t nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
+  auto key = [&](std::int64_t i, std::int64_t j, std::int64_t k) { return (k * ny + j) * nx + i; };
+  // Surface cells are sorted by (k, j, i): their keys ascend, so a cell is found by
+  // binary search.
+  std::vector<std::int64_t> keys(solid.surface.size());
+  for (std::size_t c = 0; c < keys.size(); ++c)
+    keys[c] = key(solid.surface[c][0], solid.surface[c][1], solid.surface[c][2]);
+  std::vector<Vec3d> sum(keys.size(), Vec3d::Zero());
+  std::vector<double> area(keys.size(), 0.0);
+  const Vec3d half = Vec3d::Constant(0.5 * g.spacing);
+  const TriMesh& m = solid.mesh;
+  for (const Triangle& t : m.triangles) {
+    const Vec3d& a = m.vertices[t[0]];
+    const Vec3d& b = m.vertices[t[1]];
+    const Vec3d& c = m.vertices[t[2]];
+    const Vec3d area_normal = (b - a).cross(c - a);
+    std::int64_t from[3], to[3];
+    const std::int64_t dims[3] = {nx, ny, nz};
+    for (int k = 0; k < 3; ++k) {
+      const double lo = (std::min({a[k], b[k], c[k]}) - g.origin[k]) / g.spacing;
+      const double hi = (std::max({a[k], b[k], c[k]}) - g.origin[k]) / g.spacing;
+      from[k] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(lo)) - 1);
+      to[k] = std::min<std::int64_t>(dims[k] - 1, static_cast<std::int64_t>(std::floor(hi)) + 1);
+    }
+    for (std::int64_t k = from[2]; k <= to[2]; ++k)
+      for (std::int64_t j = from[1]; j <= to[1]; ++j)
+        for (std::int64_t i = from[0]; i <= to[0]; ++i) {
+          const auto it = std::lower_bound(keys.begin(), keys.end(), key(i, j, k));
+          if (it == keys.end() || *it != key(i, j, k)) continue;
+          const Vec3d centre = g.cell_center({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j),
+                                              static_cast<std::int32_t>(k)});
+          if (mesh::triangle_box_overlap(centre, half, a, b, c)) {
+            sum[static_cast<std::size_t>(it - keys.begin())] += area_normal;
+            area[static_cast<std::size_t>(it - keys.begin())] += area_normal.norm();
+          }
+        }
+  }
+  // On an edge or a corner the mean normal bisects the faces. On both faces of a part
+  // thinner than a cell the normals cancel: zero (the particle's contact is then a
+  // sphere, fluid_integrate).
+  for (std::size_t c = 0; c < sum.size(); ++c) {
+    const double len = sum[c].norm();
+    sum[c] = len > kThinCell * area[c] ? Vec3d(sum[c] / len) : Vec3d::Zero();
+  }
+  return sum;
 }
 
 std::vector<Vec3d> emitter_points(const scene::Emitter& e, double spacing) {
@@ -277,14 +331,20 @@ Setup prepare(const scene::Scene& s, double end_time) {
                  p.spacing / solid.scale);
     bset.solid_spacing.push_back(effective);
     const Eigen::Quaterniond q = solid.rotation();
+    const std::vector<Vec3d> positions = sampled.surface_positions();
+    const std::vector<Vec3d> normals = surface_normals(sampled);
     std::size_t kept = 0;
-    for (const Vec3d& local : sampled.surface_positions()) {
-      const Vec3d world = q * (solid.scale * local) + solid.translation;
+    for (std::size_t k = 0; k < positions.size(); ++k) {
+      const Vec3d world = q * (solid.scale * positions[k]) + solid.translation;
       if ((world.array() < reach.min.array()).any() || (world.array() > reach.max.array()).any()) {
         ++bset.dropped;
         continue;
       }
+      const Vec3d n = q * normals[k];
       bset.particles.push(world, Vec3d::Zero());
+      bset.nx.push_back(static_cast<float>(n.x()));
+      bset.ny.push_back(static_cast<float>(n.y()));
+      bset.nz.push_back(static_cast<float>(n.z()));
       bset.solid.push_back(static_cast<std::uint32_t>(i));
       ++kept;
     }

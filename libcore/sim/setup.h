@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/geometry.h"
+#include "io/particles_file.h"
 #include "scene/scene.h"
 
 namespace bw::sim {
@@ -75,6 +76,7 @@ struct EmitterLattice {
 
 struct BoundarySet {
   ParticleArrays particles;     // world positions, zero velocities
+  std::vector<float> nx, ny, nz;  // unit normal of the solid's surface at each particle (0 when unknown)
   std::vector<std::uint32_t> solid;  // index of the scene solid of each particle
   std::vector<std::size_t> per_solid;  // kept particles per solid
   std::size_t dropped = 0;      // farther than h outside the domain: never touch fluid
@@ -92,6 +94,12 @@ struct Setup {
 // Derives the parameters and builds every initial particle. `end_time` is the run's
 // end (the scene's, or the one given on the command line). Throws InputError.
 Setup prepare(const scene::Scene& scene, double end_time);
+
+// The surface normal at each surface particle of a sampled solid (in the file's
+// frame): the area-weighted mean normal of the triangles that overlap its cell
+// (bisecting edges and corners), or zero where they cancel (a part thinner than a
+// cell).
+std::vector<Vec3d> surface_normals(const SampledSolid& solid);
 
 // The points of one emitter layer, spaced `spacing` apart on its disc or rectangle.
 std::vector<Vec3d> emitter_points(const scene::Emitter& emitter, double spacing);

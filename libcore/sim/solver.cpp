@@ -30,12 +30,14 @@ constexpr std::uint32_t kReduceChunk = 512;
 constexpr std::uint32_t kReduceBlocksPerUnit = 64;
 // Largest grid (cells): the cell index is a 32-bit key and start[] has one entry each.
 constexpr std::uint64_t kMaxCells = std::uint64_t{1} << 30;
-// A fluid particle is in contact with a wall when its boundary fraction phi (1 on a
-// wall's layer of particles) exceeds this: about 0.6 spacings from a flat wall, more
-// than the CFL step (at most 0.4 spacings at speeds up to c0), so no step can cross
-// the layer unnoticed; particles resting one spacing from walls (phi 0.15, 0.35 in
-// corners) are not in contact.
-constexpr double kContactFraction = 0.4;
+// Wall contact (fluid_integrate): a fluid particle closer than kContactDistance
+// spacings to a solid's surface, over the patch of radius kPatchRadius spacings a
+// boundary particle stands for, cannot move further into the surface. Fluid at rest
+// is one spacing from the surface's particles; a CFL step moves a particle at most
+// 0.4 spacings at speeds up to c0, less than 0.6; patches of 0.75 spacings around
+// particles one spacing apart cover a flat surface without gaps (0.71 would do).
+constexpr double kContactDistance = 0.6;
+constexpr double kPatchRadius = 0.75;
 // A step shorter than this fraction of the proposed dt before a frame time would be
 // a sliver: the last two steps share the remaining time instead.
 constexpr double kSplitBeforeFrame = 2.0;
@@ -60,9 +62,9 @@ struct Solver::Impl {
   std::array<Buffer, 2> x, y, z, vx, vy, vz, id, hold;
   int front = 0;
   Buffer keys, values, keys_tmp, values_tmp;
-  Buffer rho, pres, pterm, vol, phi, ax, ay, az, nx, ny, nz, start;
+  Buffer rho, pres, pterm, vol, phi, ax, ay, az, start;
   // boundary
-  Buffer bx, by, bz, bpsi, bvx, bvy, bvz, bsolid, bstart;
+  Buffer bx, by, bz, bpsi, bvx, bvy, bvz, bnx, bny, bnz, bsolid, bstart;
   std::uint32_t nb = 0;
   ParticleArrays boundary_host;
   // reductions
@@ -218,7 +220,8 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   P.mu_b = static_cast<float>(p.mu_b);
   P.gamma1 = static_cast<float>(p.gamma1);
   P.gamma2 = static_cast<float>(p.gamma2);
-  P.contact = static_cast<float>(kContactFraction);
+  P.contact = static_cast<float>(kContactDistance * p.spacing);
+  P.patch = static_cast<float>(kPatchRadius * p.spacing);
   P.gx = static_cast<float>(p.gravity.x());
   P.gy = static_cast<float>(p.gravity.y());
   P.gz = static_cast<float>(p.gravity.z());
@@ -236,10 +239,10 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   P.ncells = static_cast<int>(s.ncells);
 
   // Refuse what cannot fit before allocating anything.
-  const std::uint64_t per_particle = 31 * sizeof(float);
+  const std::uint64_t per_particle = 28 * sizeof(float);
   const std::uint64_t nb_all = setup.boundary.particles.size();
   const std::uint64_t estimate = (s.capacity + kPad) * per_particle + 2 * (cells + 1) * sizeof(std::uint32_t) +
-                                 (nb_all + kPad) * 12 * sizeof(float);
+                                 (nb_all + kPad) * 15 * sizeof(float);
   const compute::DeviceInfo& dev = context.device();
   if (dev.global_memory && estimate > dev.global_memory)
     fail_input("the scene needs about {} of device memory ({} fluid particles, {} boundary particles, {} grid cells); "
@@ -286,9 +289,6 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   s.pterm = s.floats(cap, "fluid p/rho^2");
   s.vol = s.floats(cap, "fluid 1/rho");
   s.phi = s.floats(cap, "fluid boundary fraction");
-  s.nx = s.floats(cap, "fluid wall normal x");
-  s.ny = s.floats(cap, "fluid wall normal y");
-  s.nz = s.floats(cap, "fluid wall normal z");
   s.ax = s.floats(cap, "fluid ax");
   s.ay = s.floats(cap, "fluid ay");
   s.az = s.floats(cap, "fluid az");
@@ -325,10 +325,18 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   s.bvx = s.floats(nb, "boundary vx");
   s.bvy = s.floats(nb, "boundary vy");
   s.bvz = s.floats(nb, "boundary vz");
+  s.bnx = s.floats(nb, "boundary normal x");
+  s.bny = s.floats(nb, "boundary normal y");
+  s.bnz = s.floats(nb, "boundary normal z");
   s.bsolid = s.uints(nb, "boundary solid");
   {
     Buffer ux = s.floats(nb, "boundary x (unsorted)"), uy = s.floats(nb, "boundary y (unsorted)"),
            uz = s.floats(nb, "boundary z (unsorted)"), us = s.uints(nb, "boundary solid (unsorted)");
+    Buffer unx = s.floats(nb, "boundary normal x (unsorted)"), uny = s.floats(nb, "boundary normal y (unsorted)"),
+           unz = s.floats(nb, "boundary normal z (unsorted)");
+    context.write_vector(unx, bset.nx);
+    context.write_vector(uny, bset.ny);
+    context.write_vector(unz, bset.nz);
     context.write_vector(ux, bset.particles.x);
     context.write_vector(uy, bset.particles.y);
     context.write_vector(uz, bset.particles.z);
@@ -345,6 +353,10 @@ Solver::Solver(const Setup& setup, compute::Context& context)
       context.launch(s.gather_float, s.nb);
       s.gather_float.args(s.nb, bvalues, uz, s.bz);
       context.launch(s.gather_float, s.nb);
+      for (auto [from, to] : {std::pair{&unx, &s.bnx}, std::pair{&uny, &s.bny}, std::pair{&unz, &s.bnz}}) {
+        s.gather_float.args(s.nb, bvalues, *from, *to);
+        context.launch(s.gather_float, s.nb);
+      }
       s.gather_uint.args(s.nb, bvalues, us, s.bsolid);
       context.launch(s.gather_uint, s.nb);
     }
@@ -400,8 +412,8 @@ StepInfo Solver::step(double t_target) {
   if (!(t_target > s.t)) fail_run("step to t = {} requested at t = {}", t_target, s.t);
   s.ensure_grid();
   const int f = s.front;
-  s.forces.args(s.P, s.start, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.rho, s.pterm, s.vol, s.phi, s.bstart,
-                s.bx, s.by, s.bz, s.bpsi, s.bvx, s.bvy, s.bvz, s.ax, s.ay, s.az, s.nx, s.ny, s.nz);
+  s.forces.args(s.P, s.start, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.rho, s.pterm, s.vol, s.bstart, s.bx,
+                s.by, s.bz, s.bpsi, s.bvx, s.bvy, s.bvz, s.ax, s.ay, s.az);
   s.ctx.launch(s.forces, s.n);
 
   std::uint32_t chunk = 0;
@@ -442,8 +454,8 @@ StepInfo Solver::step(double t_target) {
     dt = 0.5 * remaining;
   }
 
-  s.integrate.args(s.n, static_cast<float>(dt), s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.ax, s.ay, s.az,
-                   s.nx, s.ny, s.nz, s.hold[f], s.emitter_table);
+  s.integrate.args(s.P, s.n, static_cast<float>(dt), s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.ax, s.ay,
+                   s.az, s.phi, s.bstart, s.bx, s.by, s.bz, s.bnx, s.bny, s.bnz, s.hold[f], s.emitter_table);
   s.ctx.launch(s.integrate, s.n);
   s.grid_valid = false;
   s.t = lands ? t_target : s.t + dt;
@@ -472,7 +484,7 @@ std::uint64_t Solver::device_bytes() const {
     total += s.x[k].bytes() + s.y[k].bytes() + s.z[k].bytes() + s.vx[k].bytes() + s.vy[k].bytes() + s.vz[k].bytes() +
              s.id[k].bytes() + s.hold[k].bytes();
   for (const Buffer* b : {&s.keys, &s.values, &s.keys_tmp, &s.values_tmp, &s.rho, &s.pres, &s.pterm, &s.vol, &s.phi, &s.ax,
-                          &s.ay, &s.az, &s.nx, &s.ny, &s.nz, &s.start, &s.bx, &s.by, &s.bz, &s.bpsi, &s.bvx, &s.bvy, &s.bvz, &s.bsolid,
+                          &s.ay, &s.az, &s.start, &s.bx, &s.by, &s.bz, &s.bpsi, &s.bvx, &s.bvy, &s.bvz, &s.bnx, &s.bny, &s.bnz, &s.bsolid,
                           &s.bstart, &s.step_out, &s.frame_out, &s.ex, &s.ey, &s.ez, &s.emitter_table})
     total += b->bytes();
   return total + s.sort->scratch_bytes();
@@ -576,8 +588,8 @@ Solver::Snapshot Solver::snapshot() {
   Impl& s = *impl_;
   s.ensure_grid();
   const int f = s.front;
-  s.forces.args(s.P, s.start, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.rho, s.pterm, s.vol, s.phi, s.bstart,
-                s.bx, s.by, s.bz, s.bpsi, s.bvx, s.bvy, s.bvz, s.ax, s.ay, s.az, s.nx, s.ny, s.nz);
+  s.forces.args(s.P, s.start, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.rho, s.pterm, s.vol, s.bstart, s.bx,
+                s.by, s.bz, s.bpsi, s.bvx, s.bvy, s.bvz, s.ax, s.ay, s.az);
   s.ctx.launch(s.forces, s.n);
   s.settle_count();
   const std::size_t n = s.n, nb = s.nb;
