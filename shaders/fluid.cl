@@ -49,7 +49,8 @@ __kernel void boundary_psi(SimParams P, uint nb, __global const uint* bstart, __
 
 // rho_i = m sum_j W(x_ij) + gamma1 sum_b Psi_b W(x_ib) with W = W_spiky, then the Tait
 // pressure, the
-// per-particle factors the force kernel reads: pterm = p / rho^2, vol = 1 / rho, and
+// per-particle factors the force kernel reads, with the constants of its sums folded
+// in (pterm = kp p / rho^2, vol = kv / rho, below), and
 // the boundary fraction phi = sum_b Psi_b W_spiky(x_ib) / rho0 (1 on a wall's layer of
 // particles, 0.15 one spacing from a flat wall, 0 far from walls).
 __kernel void fluid_density(SimParams P, __global const uint* start, __global const float* x,
@@ -90,8 +91,8 @@ __kernel void fluid_density(SimParams P, __global const uint* start, __global co
   const float p = bw_tait(r, P.rho0, P.stiffness, P.gamma, P.gamma_int);
   rho[i] = r;
   pres[i] = p;
-  pterm[i] = p / (r * r);
-  vol[i] = 1.0f / r;
+  pterm[i] = P.pressure_scale * p / (r * r);
+  vol[i] = P.viscosity_scale / r;
   phi[i] = boundary / P.rho0;
 }
 
@@ -108,26 +109,28 @@ __kernel void fluid_density(SimParams P, __global const uint* start, __global co
 __kernel void fluid_forces(SimParams P, __global const uint* start, __global const float* x,
                            __global const float* y, __global const float* z, __global const float* vx,
                            __global const float* vy, __global const float* vz, __global const float* rho,
-                           __global const float* pterm, __global const float* vol, __global const uint* bstart, __global const float* bx, __global const float* by,
-                           __global const float* bz, __global const float* bpsi, __global const float* bvx,
-                           __global const float* bvy, __global const float* bvz, __global float* ax,
-                           __global float* ay, __global float* az) {
+                           __global const float* pterm, __global const float* vol, __global const uint* bstart,
+                           __global const float* bx, __global const float* by, __global const float* bz,
+                           __global const float* bpsi, __global const float* bvx, __global const float* bvy,
+                           __global const float* bvz, __global float* ax, __global float* ay, __global float* az) {
   const uint i = get_global_id(0);
   if (i >= start[P.ncells]) return;
   const float xi = x[i], yi = y[i], zi = z[i];
   const float vxi = vx[i], vyi = vy[i], vzi = vz[i];
-  const float pti = pterm[i];
+  const float pti = pterm[i];  // kp p_i / rho_i^2, kp = 3 spiky m / c
   const float rhoi = rho[i];
+  const float inv_rhoi = 1.0f / rhoi;
+  // The boundary terms' own factors, per particle: pressure (gamma2, mirrored p_i)
+  // and friction (mu_b), scaled like the fluid terms so that one sum holds all.
+  const float kb = P.gamma2 / (P.mass * P.rho0 * P.rho0) * (pti * P.rho0 * P.rho0 + pti * rhoi * rhoi);
+  const float kf = P.mu_b * P.visc / P.rho0 * inv_rhoi;
   const int cx = bw_cell_coord(xi, P.ox, P.inv_cell, P.nx);
   const int cy = bw_cell_coord(yi, P.oy, P.inv_cell, P.ny);
   const int cz = bw_cell_coord(zi, P.oz, P.inv_cell, P.nz);
   const int x0 = max(cx - 1, 0), x1 = min(cx + 1, P.nx - 1);
   const float h = P.h, h2 = P.h2;
-  const float min_r2 = h2 * BW_MIN_R2_FRACTION;
-  vfloat fx = 0.0f, fy = 0.0f, fz = 0.0f;    // sum (Pi + Pj) (h - r)^2 / r x_ij
-  vfloat lx = 0.0f, ly = 0.0f, lz = 0.0f;    // sum (v_j - v_i) (h - r) / rho_j
-  vfloat bfx = 0.0f, bfy = 0.0f, bfz = 0.0f; // sum Psi_b (h - r)^2 / r x_ib
-  vfloat blx = 0.0f, bly = 0.0f, blz = 0.0f; // sum Psi_b (v_b - v_i) (h - r)
+  const float min_r2 = h2 * BW_MIN_R2_FRACTION;  // keeps 1/r finite for the particle itself
+  vfloat sx = 0.0f, sy = 0.0f, sz = 0.0f;  // the acceleration, but gravity
   for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
     for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
       const int row = bw_cell_index(0, gy, gz, P.nx, P.ny);
@@ -135,17 +138,16 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
       for (uint j = s; j < e; j += BW_VW) {
         const vfloat dx = xi - VLOAD(x + j), dy = yi - VLOAD(y + j), dz = zi - VLOAD(z + j);
         const vfloat r2 = dx * dx + dy * dy + dz * dz;
-        const vint ok = (r2 < h2) & (r2 > min_r2) & VIN_ROW(j, e);
+        const vint ok = (r2 < h2) & VIN_ROW(j, e);
         const vfloat ir = bw_rsqrt(fmax(r2, min_r2));
         const vfloat q = h - r2 * ir;
+        // pressure: (Pi + Pj) (h - r)^2 / r x_ij; viscosity: (h - r)/rho_j (v_j - v_i)
+        // over rho_i. The particle itself adds 0 to both (x_ii = 0, v_i - v_i = 0).
         const vfloat c = select((vfloat)0.0f, (pti + VLOAD(pterm + j)) * q * q * ir, ok);
-        const vfloat w = select((vfloat)0.0f, q * VLOAD(vol + j), ok);
-        fx += c * dx;
-        fy += c * dy;
-        fz += c * dz;
-        lx += (VLOAD(vx + j) - vxi) * w;
-        ly += (VLOAD(vy + j) - vyi) * w;
-        lz += (VLOAD(vz + j) - vzi) * w;
+        const vfloat w = select((vfloat)0.0f, q * VLOAD(vol + j) * inv_rhoi, ok);
+        sx += c * dx + w * (VLOAD(vx + j) - vxi);
+        sy += c * dy + w * (VLOAD(vy + j) - vyi);
+        sz += c * dz + w * (VLOAD(vz + j) - vzi);
       }
       const uint bs = bstart[row + x0], be = bstart[row + x1 + 1];
       for (uint j = bs; j < be; j += BW_VW) {
@@ -155,26 +157,17 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
         const vfloat psi = VLOAD(bpsi + j);
         const vfloat ir = bw_rsqrt(fmax(r2, min_r2));
         const vfloat q = h - r2 * ir;
-        const vfloat c = select((vfloat)0.0f, psi * q * q * ir, ok);
-        const vfloat w = select((vfloat)0.0f, psi * q, ok);
-        bfx += c * dx;
-        bfy += c * dy;
-        bfz += c * dz;
-        blx += (VLOAD(bvx + j) - vxi) * w;
-        bly += (VLOAD(bvy + j) - vyi) * w;
-        blz += (VLOAD(bvz + j) - vzi) * w;
+        const vfloat c = select((vfloat)0.0f, kb * psi * q * q * ir, ok);
+        const vfloat w = select((vfloat)0.0f, kf * psi * q, ok);
+        sx += c * dx + w * (VLOAD(bvx + j) - vxi);
+        sy += c * dy + w * (VLOAD(bvy + j) - vyi);
+        sz += c * dz + w * (VLOAD(bvz + j) - vzi);
       }
     }
   }
-  // -grad W_spiky is 3 spiky (h - r)^2 x / r: the sums above point away from the
-  // neighbours, so every pressure term below is repulsive.
-  const float kp = P.grad_scale * P.mass * 3.0f * P.spiky;
-  const float kv = P.mu * P.mass * P.visc / rhoi;
-  const float kbp = P.grad_scale * 3.0f * P.spiky * P.gamma2 * (pti + pti * rhoi * rhoi / (P.rho0 * P.rho0));
-  const float kbv = P.mu_b * P.visc / (rhoi * P.rho0);
-  ax[i] = kp * VSUM(fx) + kv * VSUM(lx) + kbp * VSUM(bfx) + kbv * VSUM(blx) + P.gx;
-  ay[i] = kp * VSUM(fy) + kv * VSUM(ly) + kbp * VSUM(bfy) + kbv * VSUM(bly) + P.gy;
-  az[i] = kp * VSUM(fz) + kv * VSUM(lz) + kbp * VSUM(bfz) + kbv * VSUM(blz) + P.gz;
+  ax[i] = VSUM(sx) + P.gx;
+  ay[i] = VSUM(sy) + P.gy;
+  az[i] = VSUM(sz) + P.gz;
 }
 
 // Symplectic Euler: v += a dt, then x += v dt with the new velocity.

@@ -34,6 +34,8 @@ typedef struct {
   float h, h2;
   float spiky;      // 15 / (pi h^6): W_spiky = spiky (h - r)^3
   float grad_scale; // 1 / c: corrects the spiky gradient's first moment c on the lattice
+  float pressure_scale;   // kp = 3 spiky m / c: pressure term of the force sums
+  float viscosity_scale;  // kv = mu m visc: viscosity term of the force sums
   float visc;       // 45 / (pi h^6): lap W_visc = visc (h - r)
   // fluid
   float mass;       // particle mass (kg): a particle inside a full lattice has rho0
