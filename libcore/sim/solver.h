@@ -11,6 +11,19 @@
 // One step: keys -> radix sort -> reorder -> cell starts -> density -> forces ->
 // reduction (max |v|, max |a|, non-finite values; the one small read per step) ->
 // dt on the host -> symplectic Euler with wall contact -> emitters.
+//
+// Moving solids fit this layout as follows. Boundary particles carry the solid's
+// index (bsolid) and a velocity (bvx, bvy, bvz, zero for static solids) that the
+// friction term and the contact rule already use. To move a body, recompute its
+// particles' positions, velocities and normals from reference arrays and the body's
+// pose, then sort the boundary again (boundary_keys, the radix sort, the gathers and
+// cell_starts, as at construction) before the density of the next step; Psi_b only
+// changes when a body's own particles change (fracture). The force of the fluid on a
+// boundary particle b is the negative of what b does to its fluid neighbours in
+// fluid_forces (boundary pressure and friction, and the contact impulse of
+// fluid_integrate): a kernel over boundary particles can gather it from the fluid
+// grid (start, x, ...) without atomics, and a per-body sum over blocks of boundary
+// particles in body order gives force and torque deterministically.
 #pragma once
 
 #include <cstdint>
