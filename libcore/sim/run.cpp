@@ -6,6 +6,8 @@
 #include <limits>
 #include <regex>
 
+#include <unistd.h>
+
 #include <fmt/format.h>
 
 #include "common/error.h"
@@ -66,6 +68,12 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
   std::error_code ec;
   if (fs::exists(out, ec) && !fs::is_directory(out, ec))
     fail_input("{}: exists and is not a folder", s.options.output);
+  // The output folder, or the closest folder above it that exists, must be writable.
+  fs::path existing = fs::absolute(out, ec);
+  while (!existing.empty() && !fs::exists(existing, ec) && existing != existing.parent_path())
+    existing = existing.parent_path();
+  if (::access(existing.c_str(), W_OK) != 0)
+    fail_input("{}: cannot write there ({} is not writable)", s.options.output, existing.string());
   s.setup = prepare(scene, s.end_time);
   s.context = std::make_unique<compute::Context>(device);
   s.solver = std::make_unique<Solver>(s.setup, *s.context);

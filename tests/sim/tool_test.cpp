@@ -143,6 +143,11 @@ TEST(BwSim, MissingSceneAndOutput) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("-o OUTDIR"), std::string::npos) << r.err;
   EXPECT_FALSE(test::exists(dir.file("out")));
+  std::ofstream(dir.file("file")) << "x";
+  std::ofstream(dir.file("scene.toml")) << kGood;
+  r = test::run(bw_sim() + " " + dir.file("scene.toml") + " -o " + dir.file("file"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("exists and is not a folder"), std::string::npos) << r.err;
 }
 
 TEST(BwSim, BlowUpStopsWithOneAndKeepsEarlierFrames) {
