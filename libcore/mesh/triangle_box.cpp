@@ -5,7 +5,11 @@
 
 namespace bw::mesh {
 
-bool triangle_box_overlap(const Vec3d& center, const Vec3d& half, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+bool triangle_box_overlap(const Vec3d& center, const Vec3d& half, const Vec3d& a, const Vec3d& b, const Vec3d& c,
+                          bool closed) {
+  // An interval [lo, hi] is separated from [-r, r]: strictly for closed boxes, with
+  // contact for open ones.
+  auto separated = [closed](double lo, double hi, double r) { return closed ? (lo > r || hi < -r) : (lo >= r || hi <= -r); };
   // Move the box to the origin.
   const Vec3d v0 = a - center;
   const Vec3d v1 = b - center;
@@ -13,10 +17,10 @@ bool triangle_box_overlap(const Vec3d& center, const Vec3d& half, const Vec3d& a
 
   // Box face normals: the triangle's bounding box against the box.
   for (int i = 0; i < 3; ++i) {
-    if (std::min({v0[i], v1[i], v2[i]}) > half[i] || std::max({v0[i], v1[i], v2[i]}) < -half[i]) return false;
+    if (separated(std::min({v0[i], v1[i], v2[i]}), std::max({v0[i], v1[i], v2[i]}), half[i])) return false;
   }
 
-  // The nine axes e_i x edge. Strict comparisons: touching counts as overlapping.
+  // The nine axes e_i x edge.
   const Vec3d edges[3] = {v1 - v0, v2 - v1, v0 - v2};
   for (const Vec3d& e : edges) {
     for (int i = 0; i < 3; ++i) {
@@ -27,14 +31,15 @@ bool triangle_box_overlap(const Vec3d& center, const Vec3d& half, const Vec3d& a
       const double p1 = axis.dot(v1);
       const double p2 = axis.dot(v2);
       const double r = half.dot(axis.cwiseAbs());
-      if (std::min({p0, p1, p2}) > r || std::max({p0, p1, p2}) < -r) return false;
+      if (r > 0 && separated(std::min({p0, p1, p2}), std::max({p0, p1, p2}), r)) return false;
     }
   }
 
   // The triangle's plane.
   const Vec3d normal = edges[0].cross(edges[1]);
   const double r = half.dot(normal.cwiseAbs());
-  return std::fabs(normal.dot(v0)) <= r;
+  const double d = normal.dot(v0);
+  return !separated(d, d, r);
 }
 
 }  // namespace bw::mesh

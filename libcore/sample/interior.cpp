@@ -36,7 +36,7 @@ std::vector<CellIndex> interior_cells(const TriMesh& mesh, const SampleGrid& gri
     for (std::int64_t f = 0; f < nf; ++f) {
       const Triangle& t = mesh.triangles[static_cast<std::size_t>(f)];
       Vec3d p[3];
-      for (int k = 0; k < 3; ++k) p[k] = (mesh.vertices[t[k]] - grid.origin) / grid.spacing;
+      for (int k = 0; k < 3; ++k) p[k] = to_grid_coordinates(mesh.vertices[t[k]], grid);
       const double a[2] = {p[0].y(), p[0].z()}, b[2] = {p[1].y(), p[1].z()}, c[2] = {p[2].y(), p[2].z()};
       // The x component of the face normal; 0: the face is parallel to the rays and
       // a perturbed ray never hits it.

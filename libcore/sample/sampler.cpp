@@ -15,6 +15,15 @@ constexpr double kMaxCellsPerAxis = 2147483647.0;
 
 }  // namespace
 
+Vec3d to_grid_coordinates(const Vec3d& p, const SampleGrid& grid) {
+  Vec3d t = (p - grid.origin) / grid.spacing;
+  for (int k = 0; k < 3; ++k) {
+    const double nearest = std::round(t[k]);
+    if (std::fabs(t[k] - nearest) <= kGridSnap) t[k] = nearest;
+  }
+  return t;
+}
+
 SampleGrid grid_for(const Aabb& bounds, double spacing) {
   SampleGrid grid;
   grid.origin = bounds.min;

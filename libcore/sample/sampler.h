@@ -28,6 +28,13 @@ struct SampleOptions {
 // box, with enough cells to cover the box (at least one per axis).
 SampleGrid grid_for(const Aabb& bounds, double spacing);
 
+// Grid coordinates of a point: cell (i, j, k) spans [i, i+1] x [j, j+1] x [k, k+1].
+// A coordinate within kGridSnap of an integer is set to it, so that a face meant to
+// lie on a cell plane (0.2 m at a spacing of 0.01 m) does so exactly instead of
+// falling on either side by rounding.
+inline constexpr double kGridSnap = 1e-6;
+Vec3d to_grid_coordinates(const Vec3d& p, const SampleGrid& grid);
+
 struct SampleEstimate {
   double surface_particles = 0;
   double voxels = 0;
@@ -35,7 +42,10 @@ struct SampleEstimate {
 };
 SampleEstimate estimate(const TriMesh& mesh, const SampleGrid& grid, bool volume);
 
-// Cells that a triangle overlaps, sorted by (k, j, i), without duplicates.
+// Cells that a triangle overlaps, sorted by (k, j, i), without duplicates. A face
+// lying exactly on a cell plane (axis-aligned) marks only the cells on its inner
+// side (against its normal), so boundary particles stay inside the solid, half a cell
+// from such faces, as they do at the faces of the bounding box.
 std::vector<CellIndex> surface_cells(const TriMesh& mesh, const SampleGrid& grid);
 
 // Cells whose centre has a non-zero winding number with respect to the mesh, sorted

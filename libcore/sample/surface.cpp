@@ -11,8 +11,8 @@ namespace {
 
 // Triangles are tested in grid coordinates (cell (i,j,k) = [i, i+1] x ...), where
 // every cell boundary is an exact integer: two neighbouring cells see the same
-// plane between them, so a triangle lying on it is found by both.
-Vec3d to_grid(const Vec3d& p, const SampleGrid& grid) { return (p - grid.origin) / grid.spacing; }
+// plane between them.
+Vec3d to_grid(const Vec3d& p, const SampleGrid& grid) { return to_grid_coordinates(p, grid); }
 
 // Slack when turning a triangle's bounds into a cell range: candidates only, the
 // exact test decides.
@@ -39,16 +39,33 @@ std::vector<CellIndex> surface_cells(const TriMesh& mesh, const SampleGrid& grid
       const Vec3d hi = a.cwiseMax(b).cwiseMax(c);
       std::int64_t from[3], to[3];
       const std::int64_t n[3] = {nx, ny, nz};
+      const Vec3d normal = (b - a).cross(c - a);
+      int plane_axis = -1;  // axis of the cell plane the face lies on, if any
       for (int k = 0; k < 3; ++k) {
         // A cell i overlaps [lo, hi] when i <= hi and i + 1 >= lo.
         from[k] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::ceil(lo[k] - kRangeSlack)) - 1);
         to[k] = std::min<std::int64_t>(n[k] - 1, static_cast<std::int64_t>(std::floor(hi[k] + kRangeSlack)));
+        // A face on the cell plane x_k = m touches the cells on both sides; keep the
+        // inner one (the solid lies against the normal).
+        if (lo[k] == hi[k] && lo[k] == std::round(lo[k]) && normal[k] != 0) {
+          const auto plane = static_cast<std::int64_t>(lo[k]);
+          const std::int64_t inner = normal[k] > 0 ? plane - 1 : plane;
+          from[k] = std::max<std::int64_t>(from[k], std::min<std::int64_t>(inner, n[k] - 1));
+          to[k] = std::min<std::int64_t>(to[k], std::max<std::int64_t>(inner, 0));
+          plane_axis = k;
+        }
       }
       for (std::int64_t z = from[2]; z <= to[2]; ++z)
         for (std::int64_t y = from[1]; y <= to[1]; ++y)
           for (std::int64_t x = from[0]; x <= to[0]; ++x) {
             const Vec3d center(static_cast<double>(x) + 0.5, static_cast<double>(y) + 0.5, static_cast<double>(z) + 0.5);
-            if (mesh::triangle_box_overlap(center, half, a, b, c)) {
+            // A triangle must enter a cell's open interior: touching a cell along an
+            // edge or a corner (a tank's rim at the cavity's top row) does not mark
+            // it. A face on a cell plane is tested against its inner cell moved onto
+            // the plane, i.e. by overlap with the open square of the cell's face.
+            Vec3d test_center = center;
+            if (plane_axis >= 0) test_center[plane_axis] = lo[plane_axis];
+            if (mesh::triangle_box_overlap(test_center, half, a, b, c, /*closed=*/false)) {
               mine.push_back(static_cast<std::uint64_t>((z * ny + y) * nx + x));
             }
           }

@@ -105,6 +105,27 @@ TEST(VolumeSampling, FacesThroughCellCentresAreHalfOpen) {
   EXPECT_EQ(in_cube, 512u);
 }
 
+// Faces meant to lie on cell planes (a tank's inner walls at 0 with the grid origin
+// at -0.03) do so whatever the rounding of (0 - -0.03) / spacing, and their boundary
+// particles stay inside the walls, never in the cavity the fluid fills.
+TEST(SurfaceSampling, FacesOnInnerCellPlanesStayOnTheSolidSide) {
+  const auto tank = bw::mesh::open_box({0, 0, 0}, {0.6, 0.15, 0.4}, 0.03);
+  // Spacings that divide every dimension (0.6, 0.15, 0.4, 0.03) and one that does not.
+  for (double spacing : {0.01, 0.005, 0.0075, 0.015}) {
+    const bool aligned = spacing == 0.01 || spacing == 0.005;
+    const auto solid = sample_volume(tank, spacing);
+    std::size_t in_cavity = 0;
+    for (const auto& p : solid.surface_positions()) {
+      in_cavity += p.x() > 0 && p.x() < 0.6 && p.y() > 0 && p.y() < 0.15 && p.z() > 0;
+    }
+    EXPECT_EQ(in_cavity, 0u) << "spacing " << spacing;
+    // Whole cells: the voxels fill the walls exactly.
+    if (aligned) {
+      EXPECT_NEAR(solid.voxel_volume(), bw::mesh::mass_properties(tank).volume, 1e-9) << spacing;
+    }
+  }
+}
+
 TEST(VolumeSampling, InsideOutMeshGivesTheSameVoxelsAndIsStoredFlipped) {
   auto mesh = bw::mesh::torus({0, 0, 0}, 0.6, 0.2, 64, 32);
   const auto right = sample_volume(mesh, 0.03);
