@@ -13,6 +13,7 @@
 #include <toml++/toml.h>
 
 #include "common/error.h"
+#include "scene/overrides.h"
 
 namespace bw::scene {
 namespace fs = std::filesystem;
@@ -421,7 +422,7 @@ Eigen::Quaterniond Solid::rotation() const {
 
 Vec3d Solid::to_world(const Vec3d& p) const { return rotation() * (scale * p) + translation; }
 
-Scene parse_scene(std::string_view text, const std::string& path) {
+Scene parse_scene(std::string_view text, const std::string& path, const std::vector<std::string>& overrides) {
   Scene s;
   s.path = path;
   s.text = std::string(text);
@@ -437,6 +438,14 @@ Scene parse_scene(std::string_view text, const std::string& path) {
     std::string what(e.description());
     std::replace(what.begin(), what.end(), '\n', ' ');
     fail_input("{}:{}:{}: {}", path, where.line, where.column, what);
+  }
+  if (!overrides.empty()) {
+    apply_overrides(root, overrides, path);
+    std::ostringstream effective;
+    effective << "# " << path << " with";
+    for (const std::string& o : overrides) effective << " --set " << o;
+    effective << "\n" << root << "\n";
+    s.text = effective.str();
   }
 
   Reader top(root, "", s.path);
@@ -467,7 +476,7 @@ Scene parse_scene(std::string_view text, const std::string& path) {
   return s;
 }
 
-Scene load_scene(const std::string& path) {
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
   std::error_code ec;
   if (!fs::exists(path, ec)) fail_input("{}: no such file", path);
   if (fs::is_directory(path, ec)) fail_input("{}: is a folder, not a scene file", path);
@@ -475,7 +484,7 @@ Scene load_scene(const std::string& path) {
   if (!in) fail_input("{}: cannot be read", path);
   std::stringstream ss;
   ss << in.rdbuf();
-  return parse_scene(ss.str(), path);
+  return parse_scene(ss.str(), path, overrides);
 }
 
 }  // namespace bw::scene

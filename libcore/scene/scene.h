@@ -96,10 +96,13 @@ struct Scene {
 };
 
 // Reads and checks a scene file. Throws InputError "<path>: <key>: <problem>".
-Scene load_scene(const std::string& path);
+// `overrides` ("KEY=VALUE", bw-sim --set; scene/overrides.h) replace keys of the file
+// before it is checked; Scene::text is then the effective scene as TOML, headed by a
+// comment naming the file and the overrides, so that a run records what it ran.
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
 
 // Parses scene text; `path` names it in messages and anchors relative paths.
-Scene parse_scene(std::string_view text, const std::string& path);
+Scene parse_scene(std::string_view text, const std::string& path, const std::vector<std::string>& overrides = {});
 
 // The field names [output] fields accepts.
 const std::vector<std::string>& field_names();

@@ -14,6 +14,7 @@ struct Options {
   std::string output;
   std::string device = "auto";
   double end_time = 0;
+  std::vector<std::string> overrides;  // --set KEY=VALUE, in order
   bool quiet = false;
 
   bool listing() const { return device == "list"; }
@@ -46,6 +47,8 @@ int main(int argc, char** argv) {
   bw::cli::setup(app,
                  "  bw-sim examples/dambreak.toml -o out/dambreak\n"
                  "  bw-sim scene.toml -o out/scene --end-time 0.5 --device cpu --quiet\n"
+                 "  bw-sim examples/dambreak.toml -o out/fine --set spacing=0.005 --set fluid.c0=40 \\\n"
+                 "      --set 'solid[0].particles=../out/examples/tank-0.005.h5'\n"
                  "  bw-sim --device list\n"
                  "  bw-info out/dambreak/run.h5 --json\n");
   Options o;
@@ -55,12 +58,16 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--end-time", o.end_time, "Simulate up to this time instead of the scene's time.end (s)")
       ->check(bw::cli::kPositive);
+  app.add_option("--set", o.overrides,
+                 "Override a scene key, KEY=VALUE (repeatable): time.cfl=0.2, fluid.block[0].max=[0.1, 0.15, 0.2], "
+                 "solid[0].particles=tank.h5 (docs/scene.md)")
+      ->allow_extra_args(false);  // one KEY=VALUE per --set: the scene may follow it
   app.add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
 
   return bw::cli::run(app, argc, argv, [&]() -> int {
     o.validate();
     if (o.listing()) return list_devices();
-    const bw::scene::Scene scene = bw::scene::load_scene(o.scene);
+    const bw::scene::Scene scene = bw::scene::load_scene(o.scene, o.overrides);
     const bw::compute::DeviceInfo device = bw::compute::choose_device(o.device);
     bw::sim::RunOptions options;
     options.output = o.output;
