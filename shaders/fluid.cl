@@ -9,6 +9,7 @@
 // (sph_vector.h).
 #include "sph_common.h"
 #include "sph_vector.h"
+#include "sph_boundary.h"
 
 // Pairs closer than this fraction of h^2 contribute no pressure or friction (the
 // particle itself, or two particles on the same spot, which have no direction).
@@ -18,33 +19,14 @@
 static inline bool bw_finite(float v) { return (as_uint(v) & 0x7f800000u) != 0x7f800000u; }
 
 // Akinci's Psi_b = rho0 / sum_k W(x_bk), the sum over the boundary particles k of the
-// same solid (including b): the fluid mass a boundary particle stands for. W is the
-// boundary kernel, W_spiky.
+// same owner, a static solid or a body (including b): the fluid mass a boundary
+// particle stands for. W is the boundary kernel, W_spiky.
 __kernel void boundary_psi(SimParams P, uint nb, __global const uint* bstart, __global const float* bx,
                            __global const float* by, __global const float* bz, __global const uint* bsolid,
                            __global float* bpsi) {
   const uint i = get_global_id(0);
   if (i >= nb) return;
-  const float xi = bx[i], yi = by[i], zi = bz[i];
-  const uint solid = bsolid[i];
-  const int cx = bw_cell_coord(xi, P.ox, P.inv_cell, P.nx);
-  const int cy = bw_cell_coord(yi, P.oy, P.inv_cell, P.ny);
-  const int cz = bw_cell_coord(zi, P.oz, P.inv_cell, P.nz);
-  const int x0 = max(cx - 1, 0), x1 = min(cx + 1, P.nx - 1);
-  float sum = 0.0f;
-  for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
-    for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
-      const int row = bw_cell_index(0, gy, gz, P.nx, P.ny);
-      const uint s = bstart[row + x0], e = bstart[row + x1 + 1];
-      for (uint j = s; j < e; ++j) {
-        if (bsolid[j] != solid) continue;
-        const float dx = xi - bx[j], dy = yi - by[j], dz = zi - bz[j];
-        const float r = sqrt(dx * dx + dy * dy + dz * dz);
-        if (r < P.h) sum += P.spiky * (P.h - r) * (P.h - r) * (P.h - r);
-      }
-    }
-  }
-  bpsi[i] = P.rho0 / sum;
+  bpsi[i] = P.rho0 / bw_psi_sum(P, i, bstart, bx, by, bz, bsolid);
 }
 
 // rho_i = m sum_j W(x_ij) + gamma1 sum_b Psi_b W(x_ib) with W = W_spiky, then the Tait
@@ -172,16 +154,18 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
 
 // Symplectic Euler: v += a dt, then x += v dt with the new velocity.
 //
-// Contact: a boundary particle b stands for a patch of its solid's surface, the disc
-// of radius P.patch around it in the plane through it normal to the surface (bn).
-// A particle near a solid (phi > 0) whose distance to such a plane is below
-// P.contact while it lies over the patch loses the part of its velocity that goes
-// into the surface (one pass over b, in the grid's order); sliding along the surface
-// is free. Fluid at rest lies one spacing from the surface's particles, beyond the
-// contact distance, and a CFL step moves a particle at most 0.4 spacings (at speeds up
-// to c0), so no step carries a particle through a solid's single layer of particles,
-// which method.md's boundary forces alone cannot promise. Where the normal is unknown
-// (parts thinner than a cell) the patch is a sphere of radius P.contact. Dissipative.
+// Contact (bw_wall_contact, sph_boundary.h): a boundary particle b stands for a patch
+// of its solid's surface, the disc of radius P.patch around it in the plane through
+// it normal to the surface (bn). A particle near a solid (phi > 0) whose distance to
+// such a plane is below P.contact while it lies over the patch loses the part of its
+// velocity relative to the patch that goes into the surface (one pass over b, in the
+// grid's order); sliding along the surface is free. Fluid at rest lies one spacing
+// from the surface's particles, beyond the contact distance, and a CFL step moves a
+// particle at most 0.4 spacings (at speeds up to c0), so no step carries a particle
+// through a solid's single layer of particles, which method.md's boundary forces
+// alone cannot promise. Where the normal is unknown (parts thinner than a cell) the
+// patch is a sphere of radius P.contact. Dissipative. The momentum a moving body's
+// patches take from the fluid here goes to the body (rigid.cl, boundary_forces).
 //
 // A particle held by emitter e (hold = e + 1) moves with the emitter's velocity
 // instead, and is let go once it is the hold distance beyond the emitter's plane.
@@ -190,7 +174,8 @@ __kernel void fluid_integrate(SimParams P, uint n, float dt, __global float* x, 
                               __global const float* ay, __global const float* az, __global const float* phi,
                               __global const uint* bstart, __global const float* bx, __global const float* by,
                               __global const float* bz, __global const float* bnx, __global const float* bny,
-                              __global const float* bnz, __global uint* hold, __global const EmitterParams* emitters) {
+                              __global const float* bnz, __global const float* bvx, __global const float* bvy,
+                              __global const float* bvz, __global uint* hold, __global const EmitterParams* emitters) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const uint held = hold[i];
@@ -209,37 +194,9 @@ __kernel void fluid_integrate(SimParams P, uint n, float dt, __global float* x, 
   float ux = vx[i] + ax[i] * dt, uy = vy[i] + ay[i] * dt, uz = vz[i] + az[i] * dt;
   const float xi = x[i], yi = y[i], zi = z[i];
   if (phi[i] > 0.0f) {
-    const int cx = bw_cell_coord(xi, P.ox, P.inv_cell, P.nx);
-    const int cy = bw_cell_coord(yi, P.oy, P.inv_cell, P.ny);
-    const int cz = bw_cell_coord(zi, P.oz, P.inv_cell, P.nz);
-    const int x0 = max(cx - 1, 0), x1 = min(cx + 1, P.nx - 1);
-    const float patch2 = P.patch * P.patch;
-    for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
-      for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
-        const int row = bw_cell_index(0, gy, gz, P.nx, P.ny);
-        const uint bs = bstart[row + x0], be = bstart[row + x1 + 1];
-        for (uint b = bs; b < be; ++b) {
-          const float dx = xi - bx[b], dy = yi - by[b], dz = zi - bz[b];
-          const float r2 = dx * dx + dy * dy + dz * dz;
-          float nx = bnx[b], ny = bny[b], nz = bnz[b];
-          float dn = dx * nx + dy * ny + dz * nz;
-          if (nx == 0.0f && ny == 0.0f && nz == 0.0f) {  // no normal: a sphere around b
-            if (r2 <= 0.0f) continue;
-            dn = sqrt(r2);
-            nx = dx / dn, ny = dy / dn, nz = dz / dn;
-          } else if (dn < 0.0f) {  // the particle is on the other side of the surface
-            dn = -dn, nx = -nx, ny = -ny, nz = -nz;
-          }
-          if (dn >= P.contact || r2 - dn * dn >= patch2) continue;
-          const float into = ux * nx + uy * ny + uz * nz;
-          if (into < 0.0f) {
-            ux -= into * nx;
-            uy -= into * ny;
-            uz -= into * nz;
-          }
-        }
-      }
-    }
+    float tx, ty, tz;
+    bw_wall_contact(P, xi, yi, zi, &ux, &uy, &uz, bstart, bx, by, bz, bnx, bny, bnz, bvx, bvy, bvz, 0xffffffffu, &tx,
+                    &ty, &tz);
   }
   vx[i] = ux;
   vy[i] = uy;

@@ -457,7 +457,8 @@ StepInfo Solver::step(double t_target) {
   }
 
   s.integrate.args(s.P, s.n, static_cast<float>(dt), s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.ax, s.ay,
-                   s.az, s.phi, s.bstart, s.bx, s.by, s.bz, s.bnx, s.bny, s.bnz, s.hold[f], s.emitter_table);
+                   s.az, s.phi, s.bstart, s.bx, s.by, s.bz, s.bnx, s.bny, s.bnz, s.bvx, s.bvy, s.bvz, s.hold[f],
+                   s.emitter_table);
   s.ctx.launch(s.integrate, s.n);
   s.grid_valid = false;
   s.t = lands ? t_target : s.t + dt;

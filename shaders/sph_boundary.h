@@ -1,0 +1,102 @@
+// Boundary-particle rules shared by the fluid kernels (fluid.cl) and the rigid-body
+// kernels (rigid.cl), so that a reaction the rigid side gathers is computed by the
+// very code that applied the action on the fluid side (OpenCL C only).
+//
+// Boundary arrays are sorted by grid cell (grid.cl): bx, by, bz positions, bnx, bny,
+// bnz unit surface normals (zero where unknown), bvx, bvy, bvz velocities, bsolid the
+// owner (a static solid, or a body; rigid.cl).
+#ifndef BW_SPH_BOUNDARY_H
+#define BW_SPH_BOUNDARY_H
+
+#include "sph_common.h"
+
+// 1 / sqrt(x) as sph_vector.h's bw_rsqrt computes it, one value at a time (the force
+// kernel's lanes and this give the same bits).
+static inline float bw_rsqrt1(float x) {
+  float y = as_float(0x5f3759df - (as_int(x) >> 1));
+  const float hx = 0.5f * x;
+  y = y * (1.5f - hx * y * y);
+  y = y * (1.5f - hx * y * y);
+  y = y * (1.5f - hx * y * y);
+  return y;
+}
+
+// Akinci's sum_k W_spiky(x_bk) over the boundary particles k of b's owner around the
+// sorted boundary particle i (Psi_b = rho0 / the sum).
+static inline float bw_psi_sum(SimParams P, uint i, __global const uint* bstart, __global const float* bx,
+                               __global const float* by, __global const float* bz, __global const uint* bsolid) {
+  const float xi = bx[i], yi = by[i], zi = bz[i];
+  const uint solid = bsolid[i];
+  const int cx = bw_cell_coord(xi, P.ox, P.inv_cell, P.nx);
+  const int cy = bw_cell_coord(yi, P.oy, P.inv_cell, P.ny);
+  const int cz = bw_cell_coord(zi, P.oz, P.inv_cell, P.nz);
+  const int x0 = max(cx - 1, 0), x1 = min(cx + 1, P.nx - 1);
+  float sum = 0.0f;
+  for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
+    for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
+      const int row = bw_cell_index(0, gy, gz, P.nx, P.ny);
+      const uint s = bstart[row + x0], e = bstart[row + x1 + 1];
+      for (uint j = s; j < e; ++j) {
+        if (bsolid[j] != solid) continue;
+        const float dx = xi - bx[j], dy = yi - by[j], dz = zi - bz[j];
+        const float r = sqrt(dx * dx + dy * dy + dz * dz);
+        if (r < P.h) sum += P.spiky * (P.h - r) * (P.h - r) * (P.h - r);
+      }
+    }
+  }
+  return sum;
+}
+
+// Wall contact of one fluid particle at (xi, yi, zi) whose velocity after the force
+// update is (*ux, *uy, *uz) (fluid_integrate, docs/scene.md "Physics"): each boundary
+// particle b stands for a patch of its solid's surface, the disc of radius P.patch
+// around it normal to bn (a sphere of radius P.contact where bn is zero). Over such a
+// patch, closer than P.contact to its plane, the particle loses the part of its
+// velocity relative to the patch (bv) that goes into the surface. Patches are taken
+// one after the other in the grid's order. The velocity change made by the patch of
+// sorted index `target` is returned in (*tx, *ty, *tz) (zero when it made none; pass
+// 0xffffffff for no target).
+static inline void bw_wall_contact(SimParams P, float xi, float yi, float zi, float* ux, float* uy, float* uz,
+                                   __global const uint* bstart, __global const float* bx, __global const float* by,
+                                   __global const float* bz, __global const float* bnx, __global const float* bny,
+                                   __global const float* bnz, __global const float* bvx, __global const float* bvy,
+                                   __global const float* bvz, uint target, float* tx, float* ty, float* tz) {
+  const int cx = bw_cell_coord(xi, P.ox, P.inv_cell, P.nx);
+  const int cy = bw_cell_coord(yi, P.oy, P.inv_cell, P.ny);
+  const int cz = bw_cell_coord(zi, P.oz, P.inv_cell, P.nz);
+  const int x0 = max(cx - 1, 0), x1 = min(cx + 1, P.nx - 1);
+  const float patch2 = P.patch * P.patch;
+  float vx = *ux, vy = *uy, vz = *uz;
+  *tx = 0.0f, *ty = 0.0f, *tz = 0.0f;
+  for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
+    for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
+      const int row = bw_cell_index(0, gy, gz, P.nx, P.ny);
+      const uint bs = bstart[row + x0], be = bstart[row + x1 + 1];
+      for (uint b = bs; b < be; ++b) {
+        const float dx = xi - bx[b], dy = yi - by[b], dz = zi - bz[b];
+        const float r2 = dx * dx + dy * dy + dz * dz;
+        float nx = bnx[b], ny = bny[b], nz = bnz[b];
+        float dn = dx * nx + dy * ny + dz * nz;
+        if (nx == 0.0f && ny == 0.0f && nz == 0.0f) {  // no normal: a sphere around b
+          if (r2 <= 0.0f) continue;
+          dn = sqrt(r2);
+          nx = dx / dn, ny = dy / dn, nz = dz / dn;
+        } else if (dn < 0.0f) {  // the particle is on the other side of the surface
+          dn = -dn, nx = -nx, ny = -ny, nz = -nz;
+        }
+        if (dn >= P.contact || r2 - dn * dn >= patch2) continue;
+        // Static patches have bv = 0, and v - 0 is v exactly.
+        const float into = (vx - bvx[b]) * nx + (vy - bvy[b]) * ny + (vz - bvz[b]) * nz;
+        if (into < 0.0f) {
+          vx -= into * nx;
+          vy -= into * ny;
+          vz -= into * nz;
+          if (b == target) *tx = -into * nx, *ty = -into * ny, *tz = -into * nz;
+        }
+      }
+    }
+  }
+  *ux = vx, *uy = vy, *uz = vz;
+}
+
+#endif
