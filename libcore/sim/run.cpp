@@ -75,6 +75,20 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
   if (::access(existing.c_str(), W_OK) != 0)
     fail_input("{}: cannot write there ({} is not writable)", s.options.output, existing.string());
   s.setup = prepare(scene, s.end_time);
+  // The time-step control never takes a step above its stability limits; a dt_min
+  // above them (a fixed step, dt_min = dt_max, set too large) would override them
+  // from the first step on, so it is refused here rather than left to blow up.
+  const Parameters& p = s.setup.params;
+  const double cfl_limit = p.cfl * p.h / (p.c0 + p.scene_speed);
+  if (p.dt_min > std::min(cfl_limit, p.dt_viscous)) {
+    if (cfl_limit <= p.dt_viscous)
+      fail_input("{}: time.dt_min: {} s is above the largest stable step of this scene, {:.3g} s (the CFL limit "
+                 "time.cfl h / (c0 + its largest speed) = {} x {} / ({:.4g} + {:.4g})); lower time.dt_min",
+                 scene.path, p.dt_min, cfl_limit, p.cfl, p.h, p.c0, p.scene_speed);
+    fail_input("{}: time.dt_min: {} s is above the largest stable step of this scene, {:.3g} s (the viscous limit "
+               "time.viscous_factor h^2 rho0 / max(mu, mu_b)); lower time.dt_min",
+               scene.path, p.dt_min, p.dt_viscous);
+  }
   s.context = std::make_unique<compute::Context>(device);
   s.solver = std::make_unique<Solver>(s.setup, *s.context);
 

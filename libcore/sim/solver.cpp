@@ -444,9 +444,22 @@ StepInfo Solver::step(double t_target) {
 
   // Adaptive step: CFL, force and viscous limits, clamped, landing on t_target.
   double dt = p.cfl * p.h / (p.c0 + vmax);
-  if (amax > 0) dt = std::min(dt, p.force_factor * std::sqrt(p.h / amax));
-  dt = std::min(dt, p.dt_viscous);
-  dt = std::clamp(dt, p.dt_min, p.dt_max);
+  const char* limit = "CFL";
+  if (amax > 0 && p.force_factor * std::sqrt(p.h / amax) < dt) {
+    dt = p.force_factor * std::sqrt(p.h / amax);
+    limit = "force";
+  }
+  if (p.dt_viscous < dt) {
+    dt = p.dt_viscous;
+    limit = "viscous";
+  }
+  // A step below dt_min would be needed: stop rather than take an unstable one (a
+  // dt_min above the limits at the start is refused before the run, sim/run.cpp).
+  if (dt < p.dt_min)
+    fail_run("step {} (t = {:.6f} s): the {} limit asks for a step of {:.3g} s, below time.dt_min = {:.3g} s; the "
+             "run stops rather than take unstable steps (lower time.dt_min)",
+             s.steps, s.t, limit, dt, p.dt_min);
+  dt = std::min(dt, p.dt_max);
   const double remaining = t_target - s.t;
   bool lands = false;
   if (remaining <= dt) {
