@@ -69,6 +69,8 @@ void write_run(const RunRecord& run, const std::string& path) {
   // One float64 value per parameter: a one-row table for bw-info.
   h5::Group parameters = root.create_group("parameters");
   for (const auto& [name, value] : run.parameters) parameters.write<double>(name, std::vector<double>{value});
+  h5::Group summary = root.create_group("summary");
+  for (const auto& [name, value] : run.summary) summary.write<double>(name, std::vector<double>{value});
 
   h5::Group solids = root.create_group("solids");
   for (std::size_t i = 0; i < run.solids.size(); ++i) {
@@ -191,6 +193,14 @@ RunRecord read_run(const std::string& path) {
       const auto v = parameters.read<double>(name);
       if (v.size() != 1) fail_input("{}: expected one value, found {}", parameters.where(name), v.size());
       run.parameters.emplace_back(name, v[0]);
+    }
+  }
+  if (root.is_group("summary")) {  // older files have none
+    const h5::Group summary = root.open_group("summary");
+    for (const std::string& name : summary.children()) {
+      const auto v = summary.read<double>(name);
+      if (v.size() != 1) fail_input("{}: expected one value, found {}", summary.where(name), v.size());
+      run.summary.emplace_back(name, v[0]);
     }
   }
 

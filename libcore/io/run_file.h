@@ -69,6 +69,10 @@ struct RunRecord {
   // Derived values the simulator used (particle mass, smoothing length, stiffness,
   // ...), by name, so that a run can be understood and reproduced from its output.
   std::vector<std::pair<std::string, double>> parameters;
+  // The run so far at its last written frame, by name: run time next to its error
+  // indicators (worst density error, energy drift, particles lost), so that a run's
+  // cost and quality read from one place (docs/formats.md lists the names).
+  std::vector<std::pair<std::string, double>> summary;
 };
 
 // Writes the whole record through a temporary file (called after every frame).

@@ -195,20 +195,32 @@ RunSummary Simulation::run() {
     row.speed_max = st.speed_max;
     row.wall_time = clock.seconds();
     record.frames.push_back(row);
-    write_run(record, run_path);
 
     const double energy = st.kinetic + st.potential + st.elastic;
-    if (f == 0) sum.energy_start = energy;
-    else sum.energy_max_rise = std::max(sum.energy_max_rise, energy - previous_energy);
+    if (f == 0) {
+      sum.energy_start = energy;
+      sum.energy_highest = energy;
+    } else {
+      sum.energy_max_rise = std::max(sum.energy_max_rise, energy - previous_energy);
+      sum.energy_highest = std::max(sum.energy_highest, energy);
+    }
     previous_energy = energy;
     sum.energy_end = energy;
     if (st.density_error_max > sum.worst_density_error || f == 0) {
       sum.worst_density_error = st.density_error_max;
       sum.worst_density_frame = f;
+      sum.worst_density_time = data.time;
     }
     mean_error_sum += st.density_error_mean;
     sum.frames = f + 1;
     sum.fluid_end = st.fluid;
+    sum.steps = solver.steps();
+    sum.simulated = data.time;
+    sum.wall_seconds = row.wall_time;
+    sum.removed = row.removed;
+    sum.mean_density_error = mean_error_sum / sum.frames;
+    record.summary = summary_values(sum);
+    write_run(record, run_path);
   };
 
   try {
@@ -260,6 +272,32 @@ RunSummary Simulation::run() {
   return sum;
 }
 
+double RunSummary::energy_drift() const {
+  return energy_start != 0 ? (energy_end - energy_start) / std::abs(energy_start) : 0;
+}
+
+double RunSummary::energy_growth() const {
+  return energy_start != 0 ? (energy_highest - energy_start) / std::abs(energy_start) : 0;
+}
+
+std::vector<std::pair<std::string, double>> summary_values(const RunSummary& r) {
+  return {{"wall_time", r.wall_seconds},
+          {"simulated_time", r.simulated},
+          {"steps", static_cast<double>(r.steps)},
+          {"particle_steps", r.particle_steps},
+          {"fluid", static_cast<double>(r.fluid_end)},
+          {"removed", static_cast<double>(r.removed)},
+          {"density_error_worst", r.worst_density_error},
+          {"density_error_worst_time", r.worst_density_time},
+          {"density_error_mean", r.mean_density_error},
+          {"energy_initial", r.energy_start},
+          {"energy_final", r.energy_end},
+          {"energy_highest", r.energy_highest},
+          {"energy_drift", r.energy_drift()},
+          {"energy_growth", r.energy_growth()},
+          {"energy_largest_rise", r.energy_max_rise}};
+}
+
 std::string format_summary(const RunSummary& r) {
   std::string out;
   out += fmt::format("  frames       {} ({:.4g} s simulated) in {}\n", r.frames, r.simulated,
@@ -268,13 +306,19 @@ std::string format_summary(const RunSummary& r) {
   out += fmt::format("  throughput   {} particle-steps/s, {:.3g} s of wall time per simulated second\n",
                      human_count(r.wall_seconds > 0 ? r.particle_steps / r.wall_seconds : 0),
                      r.simulated > 0 ? r.wall_seconds / r.simulated : 0);
-  out += fmt::format("  particles    {} fluid at the end ({} removed at the domain), {} boundary{}\n", r.fluid_end,
-                     r.removed, r.boundary, r.emitters_capped ? "; emitters held back by max_particles" : "");
-  out += fmt::format("  density      worst error {:.2f}% (frame {}), mean {:.3f}%\n", 100 * r.worst_density_error,
-                     r.worst_density_frame, 100 * r.mean_density_error);
-  const double scale = std::max(std::abs(r.energy_start), 1e-30);
-  out += fmt::format("  energy       {:.6g} J -> {:.6g} J ({:+.2f}%), largest rise between frames {:.3g} J\n",
-                     r.energy_start, r.energy_end, 100 * (r.energy_end - r.energy_start) / scale, r.energy_max_rise);
+  out += fmt::format("  particles    {} fluid at the end, {} lost (removed at the domain), {} boundary{}\n",
+                     r.fluid_end, r.removed, r.boundary,
+                     r.emitters_capped ? "; emitters held back by max_particles" : "");
+  out += fmt::format("  density      worst error {:.2f}% (frame {}, t = {:.4g} s), mean {:.3f}%\n",
+                     100 * r.worst_density_error, r.worst_density_frame, r.worst_density_time,
+                     100 * r.mean_density_error);
+  const std::string growth =
+      r.energy_highest > r.energy_start
+          ? fmt::format("at most {:+.3f}% above it (largest rise between frames {:.3g} J)", 100 * r.energy_growth(),
+                        r.energy_max_rise)
+          : std::string("never above it");
+  out += fmt::format("  energy       {:.6g} J -> {:.6g} J: drift {:+.2f}% of the initial total, {}\n", r.energy_start,
+                     r.energy_end, 100 * r.energy_drift(), growth);
   out += fmt::format("  device       {}, {} ({:.0f} bytes per fluid particle)\n", r.device, human_bytes(r.device_bytes),
                      r.capacity > 0 ? static_cast<double>(r.device_bytes) / static_cast<double>(r.capacity) : 0.0);
   return out;

@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "compute/device.h"
 #include "scene/scene.h"
@@ -34,10 +36,16 @@ struct RunSummary {
   double dt_min = 0, dt_max = 0;
   double worst_density_error = 0;      // max over frames of max(0, rho/rho0 - 1)
   int worst_density_frame = 0;
+  double worst_density_time = 0;       // s
   double mean_density_error = 0;       // mean over frames of the frame means
   double energy_start = 0, energy_end = 0;  // kinetic + potential + elastic (J)
+  double energy_highest = 0;           // largest total over the frames (J)
   double energy_max_rise = 0;          // largest rise of the total between frames (J)
   std::int64_t fluid_end = 0, removed = 0, boundary = 0;
+  // (energy_end - energy_start) / energy_start and (energy_highest - energy_start) /
+  // energy_start: what the run lost (negative) and the most it ever gained.
+  double energy_drift() const;
+  double energy_growth() const;
   bool emitters_capped = false;
   std::uint64_t device_bytes = 0;
   std::int64_t capacity = 0;
@@ -64,7 +72,11 @@ class Simulation {
   std::unique_ptr<Impl> impl_;
 };
 
-// Lines for people: steps, wall time, throughput, density error, energy.
+// Lines for people: steps, wall time, throughput, particles lost, density error,
+// energy drift.
 std::string format_summary(const RunSummary& summary);
+
+// The summary as the run file's /summary values (docs/formats.md).
+std::vector<std::pair<std::string, double>> summary_values(const RunSummary& summary);
 
 }  // namespace bw::sim
