@@ -7,16 +7,17 @@ namespace bw::render {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// A fitted camera looks from 30 degrees left of -y and 22 degrees above the horizon:
-// a three-quarter view that shows the front and the top of walls standing across x.
-constexpr double kFitAzimuth = -30.0;
-constexpr double kFitElevation = 22.0;
 // Room around the box in a fitted view: 15% more distance than a tight fit.
 constexpr double kFitMargin = 1.15;
 
 double radians(double degrees) { return degrees * kPi / 180.0; }
 
 }  // namespace
+
+Vec3d view_direction(double azimuth_degrees, double elevation_degrees) {
+  const double az = radians(azimuth_degrees), el = radians(elevation_degrees);
+  return Vec3d(std::sin(az) * std::cos(el), -std::cos(az) * std::cos(el), std::sin(el));
+}
 
 Mat4d look_at(const Vec3d& position, const Vec3d& target, const Vec3d& up) {
   const Vec3d f = (target - position).normalized();
@@ -54,13 +55,13 @@ Mat4d orthographic(double l, double r, double b, double t, double near, double f
   return m;
 }
 
-Camera fit_camera(const Aabb& box, double fov_degrees, double aspect) {
+Camera fit_camera(const Aabb& box, double fov_degrees, double aspect, double azimuth_degrees,
+                  double elevation_degrees) {
   Camera c;
   c.fov_degrees = fov_degrees;
   if (box.empty()) return c;
   const Vec3d center = 0.5 * (box.min + box.max);
-  const double az = radians(kFitAzimuth), el = radians(kFitElevation);
-  const Vec3d back(std::sin(az) * std::cos(el), -std::cos(az) * std::cos(el), std::sin(el));
+  const Vec3d back = view_direction(azimuth_degrees, elevation_degrees);
   const Vec3d f = -back;
   const Vec3d s = f.cross(Vec3d(0, 0, 1)).normalized();
   const Vec3d u = s.cross(f);

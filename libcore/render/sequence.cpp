@@ -19,6 +19,7 @@
 #include "render/particle_spacing.h"
 #include "render/renderer.h"
 #include "render/solids.h"
+#include "render/view_fit.h"
 #include "render/video.h"
 
 namespace bw::render {
@@ -217,28 +218,44 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
   report.particle_radius = radius;
   report.particle_spacing = spacing;
 
-  Aabb box = solids.reference_bounds();
+  Aabb solid_box = solids.reference_bounds();
   const TriangleSoup reference_solids = solids.place(reference.bodies);
   const Aabb placed = reference_solids.bounds();
-  if (!placed.empty()) box.add(placed.min), box.add(placed.max);
-  Aabb fluid_box;
+  if (!placed.empty()) solid_box.add(placed.min), solid_box.add(placed.max);
+  std::vector<Vec3d> water;
+  water.reserve(reference.fluid_count());
+  Aabb box = solid_box;
   for (std::size_t i = 0; i < reference.fluid_count(); ++i) {
     const Vec3d p(reference.x[i], reference.y[i], reference.z[i]);
-    if (p.allFinite()) fluid_box.add(p);
-  }
-  if (!fluid_box.empty()) {
-    fluid_box.min.array() -= radius;
-    fluid_box.max.array() += radius;
-    box.add(fluid_box.min), box.add(fluid_box.max);
+    if (!p.allFinite()) continue;
+    water.push_back(p);
+    box.add(p - Vec3d::Constant(radius));
+    box.add(p + Vec3d::Constant(radius));
   }
   report.ground_height = settings.ground_height.value_or(box.empty() ? 0.0 : box.min.z());
   const double aspect = static_cast<double>(settings.width) / settings.height;
+  // Solids hide water: the fitted view is chosen to see it, and either camera is
+  // checked for how much of it it sees.
+  const Occluders occluders(reference_solids);
   if (settings.camera) {
     report.camera = *settings.camera;
   } else {
-    report.camera = fit_camera(box, Camera{}.fov_degrees, aspect);
+    ViewFitInput fit;
+    fit.solids = solid_box;
+    fit.occluders = &occluders;
+    fit.particle_radius = radius;
+    if (settings.ground) fit.ground_height = report.ground_height;
+    fit.water = water;
+    const FittedView view = fit_view(fit, Camera{}.fov_degrees, aspect);
+    report.camera = view.camera;
     report.camera_fitted = true;
+    report.fit_azimuth = view.azimuth;
+    report.fit_elevation = view.elevation;
+    report.fit_surface_seen = view.surface_seen;
+    report.fit_floor_seen = view.floor_seen;
   }
+  report.reference_water = water.size();
+  report.water_seen = fraction_seen(report.camera, aspect, water, &occluders);
 
   std::unique_ptr<GlContext> context = GlContext::create(job.device);
   report.renderer = context->renderer();

@@ -74,6 +74,13 @@ struct SequenceReport {
   std::string reference_frame;     // the frame that fixed particle size, ground, camera
   Camera camera;
   bool camera_fitted = false;
+  // A fitted camera's direction (degrees) and the fractions of the probes on the
+  // water's surface and on the floor around it that it sees (view_fit.h; -1: none).
+  double fit_azimuth = 0, fit_elevation = 0, fit_surface_seen = -1, fit_floor_seen = -1;
+  // Particles of the reference frame, and the fraction of them that the camera sees:
+  // in the image and hidden by no solid (0 with a camera that sees no water).
+  std::size_t reference_water = 0;
+  double water_seen = 0;
   double particle_radius = 0, particle_spacing = 0, ground_height = 0;
   std::size_t max_particles = 0;
   std::size_t bodies_without_mesh = 0;  // largest count in any frame

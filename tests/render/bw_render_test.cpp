@@ -10,6 +10,7 @@
 
 #include "io/frame_file.h"
 #include "io/particles_file.h"
+#include "io/run_file.h"
 #include "render/image.h"
 #include "render/video.h"
 #include "synthetic.h"
@@ -149,6 +150,54 @@ TEST(BwRender, FragmentsPlacedByTheirBodies) {
   EXPECT_NE(r.err.find("up to 3 bodies per frame had no mesh to draw (give --fragments)"), std::string::npos)
       << r.err;
   EXPECT_NE(slurp(dir.file("with/000000.png")), slurp(dir.file("without/000000.png")));
+}
+
+// Water inside a tank: the dam break of examples/dambreak.toml, whose walls stand
+// twice as high as its water column and more than twice the cavity's width. The
+// fitted camera looks over the walls: it sees most of the water of the column
+// (frame 0) and of the surge over the floor (frame 1) that the same camera sees
+// with the tank taken away. A camera from which the front wall hides all the water
+// draws none of it, and the summary says so.
+TEST(BwRender, FittedCameraSeesTheWaterInATank) {
+  bw::test::TempDir dir;
+  br::test::write_tank_run(dir.path());
+  std::filesystem::create_directories(dir.file("frames"));
+  for (int n : {0, 1}) bw::write_frame(br::test::dambreak_frame(n), bw::frame_file_name(dir.file("frames"), n));
+  bw::RunRecord no_solids;
+  no_solids.status = "complete";
+  bw::write_run(no_solids, dir.file("no-solids.h5"));
+  const auto water_pixels = [&](const std::string& folder, int n) {
+    const br::Image image = br::read_png(dir.file(folder + fmt::format("/{:06d}.png", n)));
+    int water = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) water += image.pixel(x, y)[0] > 0;
+    return water;
+  };
+
+  const auto fitted = run(kTool + " " + dir.file("frames") + " -o " + dir.file("tank") + " --view depth -v" + kSmall);
+  ASSERT_EQ(fitted.exit_code, 0) << fitted.err;
+  EXPECT_EQ(fitted.err.find("sees none of the water"), std::string::npos) << fitted.err;
+  const std::string key = "  camera       ";
+  const std::size_t at = fitted.err.find(key);
+  ASSERT_NE(at, std::string::npos) << fitted.err;
+  const std::string camera = fitted.err.substr(at + key.size(), fitted.err.find(' ', at + key.size()) - at - key.size());
+  const auto bare = run(kTool + " " + dir.file("frames") + " -o " + dir.file("bare") + " --run " +
+                        dir.file("no-solids.h5") + " --camera " + camera + " --view depth" + kSmall);
+  ASSERT_EQ(bare.exit_code, 0) << bare.err;
+  for (int n : {0, 1}) {
+    const int in_tank = water_pixels("tank", n), without = water_pixels("bare", n);
+    bw::test::figure(fmt::format("frame {}: water pixels in the tank / without it", n),
+                     static_cast<double>(in_tank) / std::max(without, 1));
+    EXPECT_GT(without, 200) << "frame " << n;
+    EXPECT_GE(in_tank, 0.6 * without) << "frame " << n << ", camera " << camera;
+  }
+
+  const auto hidden = run(kTool + " " + dir.file("frames") + " -o " + dir.file("hidden") +
+                          " --frames 0 --camera 0.3,-0.6,1.2:0.3,0.075,0.05:40 --view depth" + kSmall);
+  ASSERT_EQ(hidden.exit_code, 0) << hidden.err;
+  EXPECT_EQ(water_pixels("hidden", 0), 0);
+  EXPECT_NE(hidden.err.find("the camera sees none of the water of the reference frame"), std::string::npos)
+      << hidden.err;
 }
 
 TEST(BwRender, Video) {

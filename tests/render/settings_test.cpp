@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "common/error.h"
 #include "io/fragments_file.h"
@@ -15,6 +16,7 @@
 #include "render/render_settings.h"
 #include "render/sequence.h"
 #include "render/solids.h"
+#include "render/view_fit.h"
 #include "sample/sampler.h"
 #include "synthetic.h"
 #include "test_support.h"
@@ -31,6 +33,28 @@ std::string error_of(const std::function<void()>& f) {
     return e.what();
   }
   return "(no InputError)";
+}
+
+// Triangles of meshes as the renderer draws them (grey, flat normals).
+br::TriangleSoup soup_of(std::initializer_list<bw::TriMesh> meshes) {
+  br::TriangleSoup soup;
+  for (const bw::TriMesh& mesh : meshes)
+    for (const bw::Triangle& t : mesh.triangles) {
+      const Vec3d& a = mesh.vertices[t[0]];
+      const Vec3d n = (mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a).normalized();
+      for (int k = 0; k < 3; ++k) {
+        const Vec3d& p = mesh.vertices[t[k]];
+        for (double v : {p.x(), p.y(), p.z(), n.x(), n.y(), n.z(), 0.5, 0.5, 0.5})
+          soup.vertices.push_back(static_cast<float>(v));
+      }
+    }
+  return soup;
+}
+
+std::vector<Vec3d> points_of(const bw::FrameData& f) {
+  std::vector<Vec3d> out;
+  for (std::size_t i = 0; i < f.fluid_count(); ++i) out.emplace_back(f.x[i], f.y[i], f.z[i]);
+  return out;
 }
 
 }  // namespace
@@ -151,6 +175,137 @@ TEST(Camera, FittedViewHoldsEveryCorner) {
       EXPECT_GT(clip.w(), 0);
     }
   }
+}
+
+// Segments and rays against triangles: a segment through a box is blocked, one
+// beside it or leaving from its surface is not, a ray down meets its top; and the
+// hierarchy over many boxes answers as the boxes one by one do.
+TEST(ViewFit, OccludersBlockWhatCrossesTheirTriangles) {
+  const br::Occluders cube(soup_of({bw::mesh::box(Vec3d(0, 0, 0), Vec3d(1, 1, 1))}));
+  EXPECT_EQ(cube.size(), 12u);
+  EXPECT_TRUE(cube.blocks(Vec3d(-1, 0.5, 0.5), Vec3d(2, 0.5, 0.5)));
+  EXPECT_TRUE(cube.blocks(Vec3d(0.5, 0.5, 0.5), Vec3d(0.5, 0.5, 3)));
+  EXPECT_FALSE(cube.blocks(Vec3d(-1, 0.5, 1.5), Vec3d(2, 0.5, 1.5)));
+  EXPECT_FALSE(cube.blocks(Vec3d(0.5, 0.5, 1), Vec3d(0.5, 0.5, 3)));
+  EXPECT_FALSE(cube.blocks(Vec3d(-1, 0.5, 0.5), Vec3d(-0.5, 0.5, 0.5)));
+  EXPECT_NEAR(cube.first_hit(Vec3d(0.3, 0.6, 5), Vec3d(0, 0, -1), 10), 4, 1e-12);
+  EXPECT_EQ(cube.first_hit(Vec3d(3, 0.6, 5), Vec3d(0, 0, -1), 10), 10);
+  EXPECT_FALSE(br::Occluders().blocks(Vec3d(-1, 0.5, 0.5), Vec3d(2, 0.5, 0.5)));
+
+  std::vector<bw::TriMesh> boxes;
+  for (int i = 0; i < 12; ++i)
+    for (int j = 0; j < 12; ++j)
+      boxes.push_back(bw::mesh::box(Vec3d(i, j, 0), Vec3d(i + 0.5, j + 0.5, 0.3 + 0.05 * ((i * 7 + j * 3) % 11))));
+  br::TriangleSoup all;
+  std::vector<br::Occluders> each;
+  for (const bw::TriMesh& b : boxes) {
+    const br::TriangleSoup one = soup_of({b});
+    all.vertices.insert(all.vertices.end(), one.vertices.begin(), one.vertices.end());
+    each.emplace_back(one);
+  }
+  const br::Occluders city(all);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 13), h(0, 1.2);
+  int blocked = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const Vec3d a(u(rng), u(rng), h(rng)), b(u(rng), u(rng), h(rng));
+    bool any = false;
+    for (const br::Occluders& o : each) any = any || o.blocks(a, b);
+    ASSERT_EQ(city.blocks(a, b), any) << a.transpose() << " -> " << b.transpose();
+    blocked += any;
+    double nearest = 1;
+    for (const br::Occluders& o : each) nearest = std::min(nearest, o.first_hit(a, b - a, 1));
+    ASSERT_EQ(city.first_hit(a, b - a, 1), nearest);
+  }
+  EXPECT_GT(blocked, 500);
+  EXPECT_LT(blocked, 1900);
+}
+
+// Water inside a tank, the dam break of examples/dambreak.toml: walls twice as high
+// as the water column and more than twice the cavity's width. The usual
+// three-quarter view sees the outside of the walls only; the fitted view looks over
+// them at the column, at the floor the water floods next, and at the surge there.
+TEST(ViewFit, LooksOverTheWallsOfATank) {
+  bw::test::TempDir dir;
+  br::test::write_tank_run(dir.path());
+  const br::TriangleSoup soup = br::SolidScene::load({dir.file("run.h5"), ""}, {}).place({});
+  const br::Occluders occluders(soup);
+  br::ViewFitInput in;
+  in.solids = soup.bounds();
+  in.occluders = &occluders;
+  in.water = points_of(br::test::dambreak_frame(0));
+  in.particle_radius = 0.008;
+  in.ground_height = -0.03;
+  const double aspect = 16.0 / 9.0;
+  const br::FittedView view = br::fit_view(in, 45, aspect);
+  const br::Camera usual = br::fit_camera(view.framed, 45, aspect);
+  EXPECT_EQ(br::fraction_seen(usual, aspect, in.water, &occluders), 0);
+  EXPECT_GT(view.elevation, br::kFitElevation);
+  EXPECT_GE(view.water_seen, 0.9);
+  EXPECT_GE(view.surface_seen, 0.8);
+  EXPECT_GE(view.floor_seen, 0.8);
+  const double surge = br::fraction_seen(view.camera, aspect, points_of(br::test::dambreak_frame(1)), &occluders);
+  bw::test::figure("fitted view: elevation", view.elevation, "degrees");
+  bw::test::figure("fitted view: azimuth", view.azimuth, "degrees");
+  bw::test::figure("fitted view: surge particles seen", surge);
+  EXPECT_GE(surge, 0.8);
+  // The framed box is the tank and its water.
+  EXPECT_TRUE(view.framed.min.isApprox(Vec3d(-0.03, -0.03, -0.03), 1e-6)) << view.framed.min.transpose();
+  EXPECT_TRUE(view.framed.max.isApprox(Vec3d(0.63, 0.18, 0.4), 1e-6)) << view.framed.max.transpose();
+}
+
+// Where the usual view sees the water, the fitted camera keeps it: water with no
+// solids, and the synthetic splash (a pool in a low tank, a ball above, a wall
+// behind), whose walls hide a little of the pool only.
+TEST(ViewFit, KeepsTheUsualViewWhenItSeesTheWater) {
+  const double aspect = 16.0 / 9.0;
+  br::ViewFitInput bare;
+  bw::FrameData ball;
+  br::test::add_ball(ball, Vec3d(0, 0, 0.5), 0.3, 0.03, 0.1, 3);
+  bare.water = points_of(ball);
+  bare.particle_radius = 0.024;
+  bare.ground_height = 0.2;
+  br::FittedView view = br::fit_view(bare, 45, aspect);
+  EXPECT_EQ(view.azimuth, br::kFitAzimuth);
+  EXPECT_EQ(view.elevation, br::kFitElevation);
+  EXPECT_EQ(view.water_seen, 1);
+
+  bw::test::TempDir dir;
+  br::test::write_wall_run(dir.path(), Vec3d::Zero(), true);
+  const br::TriangleSoup soup = br::SolidScene::load({dir.file("run.h5"), ""}, {}).place({});
+  const br::Occluders occluders(soup);
+  br::ViewFitInput splash;
+  splash.solids = soup.bounds();
+  splash.occluders = &occluders;
+  splash.water = points_of(br::test::splash_frame(20000));
+  splash.particle_radius = 0.8 * 0.03;
+  splash.ground_height = -0.05;
+  view = br::fit_view(splash, 45, aspect);
+  EXPECT_EQ(view.azimuth, br::kFitAzimuth);
+  EXPECT_EQ(view.elevation, br::kFitElevation);
+  EXPECT_GE(view.surface_seen, 0.8);
+  EXPECT_TRUE(view.framed.min.isApprox(splash.solids.min, 1e-9));  // the whole scene
+}
+
+// A little water on a large ground slab: the camera frames the water and its
+// surroundings, not the whole slab.
+TEST(ViewFit, FramesTheWaterInALargeScene) {
+  const br::TriangleSoup soup = soup_of({bw::mesh::box(Vec3d(-10, -10, -0.2), Vec3d(10, 10, 0))});
+  const br::Occluders occluders(soup);
+  br::ViewFitInput in;
+  in.solids = soup.bounds();
+  in.occluders = &occluders;
+  bw::FrameData drop;
+  br::test::add_ball(drop, Vec3d(2, 1, 0.3), 0.2, 0.02, 0.1, 3);
+  in.water = points_of(drop);
+  in.particle_radius = 0.016;
+  const br::FittedView view = br::fit_view(in, 45, 16.0 / 9.0);
+  EXPECT_LT(view.framed.extent().maxCoeff(), 2.0);
+  EXPECT_LE(view.framed.min.x(), 1.8);
+  EXPECT_GE(view.framed.max.x(), 2.2);
+  EXPECT_EQ(view.water_seen, 1);
+  EXPECT_LT((view.camera.target - Vec3d(2, 1, 0.3)).norm(), 0.5);
+  EXPECT_LT((view.camera.position - view.camera.target).norm(), 5.0);
 }
 
 TEST(ParticleSpacing, MedianNearestNeighbourOfALattice) {

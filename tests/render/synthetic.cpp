@@ -77,6 +77,40 @@ Aabb write_wall_run(const std::string& dir, const Vec3d& translation, bool tank)
   return box;
 }
 
+Aabb write_tank_run(const std::string& dir) {
+  const Vec3d lo(0, 0, 0), hi(0.6, 0.15, 0.4);
+  const SampledSolid sampled = sample::sample_mesh(mesh::open_box(lo, hi, 0.03), {0.01, false, "tank", 1.0});
+  write_particles(sampled, dir + "/tank.h5", "synthetic");
+  RunRecord run;
+  run.tool = "synthetic";
+  run.status = "complete";
+  SolidRecord solid;
+  solid.name = "tank";
+  solid.particles = dir + "/tank.h5";
+  solid.kind = "static";
+  run.solids.push_back(solid);
+  write_run(run, dir + "/run.h5");
+  Aabb cavity;
+  cavity.add(lo);
+  cavity.add(hi);
+  return cavity;
+}
+
+FrameData dambreak_frame(int frame_number) {
+  FrameData f;
+  f.frame = frame_number;
+  f.time = frame_number / 60.0;
+  const double s = 0.01;
+  // Particle centres half a spacing inside the faces (the last row's upper bound
+  // is a little past the centre, so that rounding keeps it).
+  const Vec3d first = Vec3d::Constant(s / 2), last = Vec3d::Constant(0.45 * s);
+  if (frame_number == 0)
+    add_block(f, first, Vec3d(0.1, 0.15, 0.2) - last, s, 0.0, 1);
+  else
+    add_block(f, first, Vec3d(0.6, 0.15, 0.03) - last, s, 0.1, 1);
+  return f;
+}
+
 void add_spray(FrameData& frame, std::uint32_t seed) {
   const double spacing = std::abs(frame.x.at(1) - frame.x.at(0));
   std::mt19937 rng(seed);

@@ -31,6 +31,16 @@ FrameData splash_frame(std::size_t particles, int frame_number = 0);
 // at 0.4 m, walls 5 cm), in `dir`/tank.h5. Returns the wall's bounds in the world.
 Aabb write_wall_run(const std::string& dir, const Vec3d& translation = Vec3d::Zero(), bool tank = false);
 
+// The dam break of examples/dambreak.toml: the example tank (examples/meshes/
+// tank.obj: an open box whose cavity spans x in [0, 0.6], y in [0, 0.15], z in
+// [0, 0.4], walls 3 cm), sampled at 1 cm into `dir`/tank.h5, in the run file
+// `dir`/run.h5 as its one static solid. Returns the cavity.
+Aabb write_tank_run(const std::string& dir);
+// Water of that dam break at 1 cm spacing: frame 0 is the column (x in [0, 0.1],
+// the cavity's width, z in [0, 0.2], as bw-sim places it); any later frame a surge
+// 3 cm deep over the whole floor.
+FrameData dambreak_frame(int frame_number);
+
 // A crown around (0.15, -0.2, 0.25): a thin conical sheet of particles one spacing
 // thick rising from the pool, and drops of one to a few particles flung out of it
 // (seeded), at the spacing of the frame's particles.

@@ -58,6 +58,10 @@ void print_summary(const Options& o, const bw::render::SequenceJob& job, const b
   if (r.bodies_without_mesh)
     std::fprintf(stderr, "  note         up to %zu bodies per frame had no mesh to draw (give --fragments)\n",
                  r.bodies_without_mesh);
+  if (r.reference_water > 0 && r.water_seen == 0)
+    std::fprintf(stderr,
+                 "  note         the camera sees none of the water of the reference frame: solids hide it or it is "
+                 "out of view\n");
   if (!o.verbose) return;
   const auto& s = job.settings;
   const auto& c = r.camera;
@@ -65,6 +69,16 @@ void print_summary(const Options& o, const bw::render::SequenceJob& job, const b
   std::fprintf(stderr, "  image        %d x %d, filter %s\n", s.width, s.height, bw::render::filter_name(s.filter));
   std::fprintf(stderr, "  camera       %g,%g,%g:%g,%g,%g:%g%s\n", c.position.x(), c.position.y(), c.position.z(),
                c.target.x(), c.target.y(), c.target.z(), c.fov_degrees, r.camera_fitted ? " (fitted)" : "");
+  if (r.camera_fitted) {
+    std::string seen;
+    if (r.fit_surface_seen >= 0) seen += fmt::format(", sees {:.0f}% of the water's surface", 100 * r.fit_surface_seen);
+    if (r.fit_floor_seen >= 0) seen += fmt::format(" and {:.0f}% of the floor around it", 100 * r.fit_floor_seen);
+    std::fprintf(stderr, "  view         azimuth %g, elevation %g degrees%s\n", r.fit_azimuth, r.fit_elevation,
+                 seen.c_str());
+  }
+  if (r.reference_water > 0)
+    std::fprintf(stderr, "  water        %.0f%% of the reference frame's particles in view, not hidden by solids\n",
+                 100 * r.water_seen);
   std::fprintf(stderr, "  particles    up to %zu, radius %.4g m (spacing %.4g m)\n", r.max_particles,
                r.particle_radius, r.particle_spacing);
   std::fprintf(stderr, "  solids       %zu, fragments %zu, ground at z = %.4g\n", r.solids, r.fragments,
