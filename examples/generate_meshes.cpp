@@ -28,6 +28,18 @@ bw::TriMesh house(double width, double depth, double wall_height, double roof_he
   return m;
 }
 
+// A sealed tank: the solid between the box [inner_min, inner_max] and that box grown
+// by `wall` on every side (two closed surfaces: the outer one facing out, the
+// cavity's facing into it), so that nothing splashes out of it.
+bw::TriMesh sealed_box(const Vec3d& inner_min, const Vec3d& inner_max, double wall) {
+  bw::TriMesh m = mesh::box(inner_min - Vec3d::Constant(wall), inner_max + Vec3d::Constant(wall));
+  const bw::TriMesh cavity = mesh::box(inner_min, inner_max);
+  const auto offset = static_cast<int>(m.vertices.size());
+  m.vertices.insert(m.vertices.end(), cavity.vertices.begin(), cavity.vertices.end());
+  for (auto t : cavity.triangles) m.triangles.push_back({t[0] + offset, t[2] + offset, t[1] + offset});
+  return m;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -47,6 +59,19 @@ int main(int argc, char** argv) {
     mesh::export_mesh(mesh::box({-1, -2, -0.1}, {5, 2, 0}), dir + "/ground.obj");
     // A tank for dam breaks and floating bodies: cavity 0.6 x 0.15 x 0.4 m, walls 3 cm.
     mesh::export_mesh(mesh::open_box({0, 0, 0}, {0.6, 0.15, 0.4}, 0.03), dir + "/tank.obj");
+    // Validation (docs/validation.md): a channel for Martin & Moyce's dam break,
+    // cavity 1 x 0.1 x 0.3 m, and a column for hydrostatics, cavity 0.1 x 0.1 x 0.3 m,
+    // walls 4 cm: every face lies on a cell plane of bw-sample's grid at spacings
+    // 0.02, 0.01, 0.005 and 0.0025, so the fluid fills the cavity at each of them.
+    mesh::export_mesh(mesh::open_box({0, 0, 0}, {1.0, 0.1, 0.3}, 0.04), dir + "/channel.obj");
+    mesh::export_mesh(mesh::open_box({0, 0, 0}, {0.1, 0.1, 0.3}, 0.04), dir + "/column.obj");
+    // Stability cases: a sealed tank, cavity 0.6 x 0.1 x 1 m, for jets and drops whose
+    // splashes must stay in; a baffle across it, 4 cm thick and 0.2 m high; a sheet of
+    // the same size only 1 cm thick (one cell of bw-sample's grid at a spacing of
+    // 0.01 m: both faces in the same boundary particles).
+    mesh::export_mesh(sealed_box({0, 0, 0}, {0.6, 0.1, 1.0}, 0.04), dir + "/sealed.obj");
+    mesh::export_mesh(mesh::box({0, 0, 0}, {0.04, 0.1, 0.2}), dir + "/baffle.obj");
+    mesh::export_mesh(mesh::box({0, 0, 0}, {0.01, 0.1, 0.2}), dir + "/sheet.obj");
     // A crate, 0.1 m cube, for the floating-body scene.
     mesh::export_mesh(mesh::box({0, 0, 0}, {0.1, 0.1, 0.1}), dir + "/crate.obj");
     // Scene 3: a valley 8 m long falling 0.12 m per metre along x, with parabolic
