@@ -1,0 +1,156 @@
+// The study's measurements and the stability checks on synthetic runs: each check
+// finds what it is meant to find (a particle inside a solid, outside the domain, a
+// non-finite position, a density error or an energy rise past the limits), and a
+// clean run passes them all.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "io/frame_file.h"
+#include "io/particles_file.h"
+#include "io/run_file.h"
+#include "mesh/shapes.h"
+#include "sample/sampler.h"
+#include "study_checks.h"
+#include "test_support.h"
+
+namespace bw {
+namespace {
+
+TEST(WindingNumber, OneInsideZeroOutside) {
+  const TriMesh box = mesh::box(Vec3d(0, 0, 0), Vec3d(1, 2, 3));
+  EXPECT_NEAR(study::winding_number(box, Vec3d(0.5, 1, 1.5)), 1.0, 1e-9);
+  EXPECT_NEAR(study::winding_number(box, Vec3d(0.99, 0.01, 2.99)), 1.0, 1e-9);
+  EXPECT_NEAR(study::winding_number(box, Vec3d(1.01, 1, 1.5)), 0.0, 1e-9);
+  EXPECT_NEAR(study::winding_number(box, Vec3d(-5, 7, 1)), 0.0, 1e-9);
+  // A tank: the walls are the solid, the cavity is outside it.
+  const TriMesh tank = mesh::open_box(Vec3d(0, 0, 0), Vec3d(1, 1, 1), 0.1);
+  EXPECT_NEAR(study::winding_number(tank, Vec3d(0.5, 0.5, 0.5)), 0.0, 1e-9) << "in the cavity";
+  EXPECT_NEAR(study::winding_number(tank, Vec3d(-0.05, 0.5, 0.5)), 1.0, 1e-9) << "in a wall";
+  EXPECT_NEAR(study::winding_number(tank, Vec3d(0.5, 0.5, -0.05)), 1.0, 1e-9) << "in the floor";
+  EXPECT_NEAR(study::winding_number(tank, Vec3d(0.5, 0.5, 1.05)), 0.0, 1e-9) << "above the open top";
+}
+
+// A run folder with a tank (the open box [0, 1]^2 x [0, 1], walls 0.1) and frames
+// the test fills in.
+struct SyntheticRun {
+  test::TempDir dir;
+  RunRecord run;
+  std::vector<FrameData> frames;
+
+  SyntheticRun() {
+    SampledSolid tank = sample::sample_mesh(mesh::open_box(Vec3d(0, 0, 0), Vec3d(1, 1, 1), 0.1), {0.1, false, "tank", 1});
+    write_particles(tank, dir.file("tank.h5"), "check test");
+    std::ofstream(dir.file("scene.toml")) << "spacing = 0.1\n[time]\nend = 1\n[domain]\nmin = [-0.2, -0.2, -0.2]\n"
+                                             "max = [1.2, 1.2, 2]\n[[fluid.block]]\nmin = [0, 0, 0]\nmax = [1, 1, 0.5]\n"
+                                             "[[solid]]\nparticles = \"tank.h5\"\n";
+    std::ifstream in(dir.file("scene.toml"));
+    run.scene_text.assign(std::istreambuf_iterator<char>(in), {});
+    run.scene_path = dir.file("scene.toml");
+    run.status = "complete";
+    run.parameters = {{"spacing", 0.1}, {"smoothing_length", 0.2}, {"c0", 20}, {"rho0", 998}};
+  }
+  // A frame of particles at `points`, with energies (kinetic, potential) and a density error.
+  void add(const std::vector<Vec3d>& points, double kinetic, double potential, double density_error) {
+    FrameData f;
+    f.frame = static_cast<int>(frames.size());
+    f.time = 0.1 * f.frame;
+    for (const Vec3d& p : points) {
+      f.x.push_back(static_cast<float>(p.x()));
+      f.y.push_back(static_cast<float>(p.y()));
+      f.z.push_back(static_cast<float>(p.z()));
+      f.p.push_back(static_cast<float>(998 * 9.81 * (0.5 - p.z())));
+    }
+    frames.push_back(f);
+    FrameStats s;
+    s.frame = f.frame;
+    s.time = f.time;
+    s.steps = 10 * f.frame;
+    s.fluid = static_cast<std::int64_t>(points.size());
+    s.kinetic_energy = kinetic;
+    s.potential_energy = potential;
+    s.density_error_max = density_error;
+    s.wall_time = 2.0 * f.frame;
+    run.frames.push_back(s);
+  }
+  std::string write() {
+    write_run(run, dir.file("run.h5"));
+    std::filesystem::create_directories(dir.file("frames"));
+    for (const FrameData& f : frames) write_frame(f, frame_file_name(dir.file("frames"), f.frame));
+    return dir.path();
+  }
+};
+
+const std::vector<Vec3d> kInCavity = {{0.2, 0.2, 0.1}, {0.5, 0.5, 0.3}, {0.8, 0.7, 0.45}};
+
+TEST(StabilityChecks, CleanRunPasses) {
+  SyntheticRun s;
+  s.add(kInCavity, 0, 10, 0.0);
+  s.add(kInCavity, 2, 7.9, 0.01);
+  s.add(kInCavity, 1, 8.5, 0.02);
+  const study::StabilityReport r = study::check_stability(s.write(), {});
+  EXPECT_TRUE(r.stable()) << (r.failures.empty() ? "" : r.failures.front());
+  EXPECT_EQ(r.frames, 3);
+  EXPECT_DOUBLE_EQ(r.run.wall_time, 4.0);
+  EXPECT_DOUBLE_EQ(r.run.steps, 20);
+  EXPECT_DOUBLE_EQ(r.run.density_error_worst, 0.02);
+  EXPECT_NEAR(r.run.energy_drift, -0.05, 1e-12);
+  EXPECT_DOUBLE_EQ(r.run.energy_growth, 0);
+}
+
+TEST(StabilityChecks, FindParticlesInSolidsOutsideTheDomainAndNotNumbers) {
+  SyntheticRun s;
+  s.add(kInCavity, 0, 10, 0.0);
+  std::vector<Vec3d> bad = kInCavity;
+  bad.push_back({-0.05, 0.5, 0.3});   // in a wall
+  bad.push_back({0.5, 0.5, -0.05});   // in the floor
+  bad.push_back({0.5, 0.5, 3.0});     // above the domain
+  bad.push_back({std::nan(""), 0.5, 0.5});
+  s.add(bad, 0, 10, 0.0);
+  const study::StabilityReport r = study::check_stability(s.write(), {});
+  EXPECT_FALSE(r.stable());
+  EXPECT_EQ(r.inside_solids, 2);
+  EXPECT_EQ(r.outside_domain, 1);
+  EXPECT_EQ(r.nonfinite, 1);
+  EXPECT_EQ(r.first_bad_frame, 1);
+  EXPECT_EQ(r.failures.size(), 3u);
+}
+
+TEST(StabilityChecks, FindDensityErrorEnergyRiseLostParticlesAndStops) {
+  SyntheticRun s;
+  s.add(kInCavity, 0, 10, 0.0);
+  s.add(kInCavity, 1, 9.5, 0.3);     // 10.5 J: 5% above the start; compressed 30%
+  s.run.frames.back().removed = 2;
+  s.run.status = "step 12 (t = 0.1 s): the fluid blew up";
+  const study::StabilityReport r = study::check_stability(s.write(), {});
+  EXPECT_NEAR(r.run.energy_growth, 0.05, 1e-12);
+  ASSERT_EQ(r.failures.size(), 4u);
+  EXPECT_NE(r.failures[0].find("did not finish: step 12"), std::string::npos) << r.failures[0];
+  EXPECT_NE(r.failures[1].find("2 particles left the domain"), std::string::npos) << r.failures[1];
+  EXPECT_NE(r.failures[2].find("worst density error 0.3"), std::string::npos) << r.failures[2];
+  EXPECT_NE(r.failures[3].find("energy rose 5.00e-02"), std::string::npos) << r.failures[3];
+  // Within looser limits, only what no limit can excuse is left.
+  const study::StabilityReport loose = study::check_stability(s.dir.path(), {0.5, 0.1});
+  EXPECT_EQ(loose.failures.size(), 2u);
+}
+
+TEST(Hydrostatic, PressureAgainstRhoGD) {
+  SyntheticRun s;
+  // A column of particles on the axis, pressure rho0 g (0.5 - z) (SyntheticRun::add).
+  std::vector<Vec3d> column;
+  for (int k = 0; k < 5; ++k) column.push_back({0.5, 0.5, 0.05 + 0.1 * k});
+  s.add(column, 0, 10, 0);
+  s.add(column, 0, 10, 0);
+  const study::HydrostaticError e = study::hydrostatic_error(s.write(), Vec3d(0.5, 0.5, 0.25), 0.5, 0.11, 0.05);
+  EXPECT_EQ(e.frames, 1) << "frames from t = 0.05 s";
+  EXPECT_NEAR(e.expected, 998 * 9.81 * 0.25, 1e-9);
+  // The probe's Shepard average of the particle at the point and the two 0.1 m
+  // above and below it, in a linear pressure field, is the pressure at the point.
+  EXPECT_NEAR(e.relative, 0.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace bw

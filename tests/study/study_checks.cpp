@@ -1,0 +1,162 @@
+#include "study_checks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "analysis/measure.h"
+#include "common/error.h"
+#include "io/frame_file.h"
+#include "io/particles_file.h"
+#include "io/run_file.h"
+#include "scene/scene.h"
+
+namespace bw::study {
+namespace {
+
+double parameter(const RunRecord& run, const std::string& name, const std::string& where) {
+  for (const auto& [key, value] : run.parameters)
+    if (key == name) return value;
+  fail_input("{}: the run file has no parameter '{}'", where, name);
+}
+
+double total_energy(const FrameStats& s) { return s.kinetic_energy + s.potential_energy + s.elastic_energy; }
+
+}  // namespace
+
+RunIndicators read_indicators(const std::string& run_dir) {
+  const std::string path = run_dir + "/run.h5";
+  const RunRecord run = read_run(path);
+  RunIndicators r;
+  r.status = run.status;
+  if (run.frames.empty()) fail_input("{}: holds no frame", path);
+  const FrameStats& first = run.frames.front();
+  const FrameStats& last = run.frames.back();
+  r.wall_time = last.wall_time;
+  r.simulated_time = last.time;
+  r.steps = static_cast<double>(last.steps);
+  r.fluid = static_cast<double>(first.fluid);
+  r.removed = static_cast<double>(last.removed);
+  const double e0 = total_energy(first);
+  double highest = e0;
+  for (const FrameStats& s : run.frames) {
+    r.density_error_worst = std::max(r.density_error_worst, s.density_error_max);
+    highest = std::max(highest, total_energy(s));
+  }
+  const double scale = std::abs(e0) > 0 ? std::abs(e0) : 1.0;
+  r.energy_drift = (total_energy(last) - e0) / scale;
+  r.energy_growth = (highest - e0) / scale;
+  r.spacing = parameter(run, "spacing", path);
+  r.h = parameter(run, "smoothing_length", path);
+  r.c0 = parameter(run, "c0", path);
+  return r;
+}
+
+analysis::DamBreakComparison dambreak_error(const std::string& run_dir, const analysis::DamBreakSetup& setup,
+                                            const std::string& reference_csv) {
+  std::vector<analysis::DamBreakSample> samples;
+  for (const std::string& frame : analysis::list_frames(run_dir + "/frames"))
+    samples.push_back(analysis::measure_dambreak(read_frame(frame), setup));
+  return analysis::compare_dambreak(samples, setup, analysis::read_dambreak_reference(reference_csv));
+}
+
+HydrostaticError hydrostatic_error(const std::string& run_dir, const Vec3d& point, double surface, double radius,
+                                   double from) {
+  const std::string path = run_dir + "/run.h5";
+  const RunRecord run = read_run(path);
+  const double rho0 = parameter(run, "rho0", path);
+  const scene::Scene scene = scene::parse_scene(run.scene_text, run.scene_path);
+  HydrostaticError e;
+  e.expected = rho0 * scene.gravity.norm() * (surface - point.z());
+  if (!(e.expected > 0)) fail_input("hydrostatic: the point {} m lies above the surface {} m", point.z(), surface);
+  double sum = 0;
+  for (const std::string& name : analysis::list_frames(run_dir + "/frames")) {
+    const FrameData frame = read_frame(name);
+    if (frame.time < from) continue;
+    const double p = analysis::probe(frame, analysis::Field::pressure, point, radius);
+    if (!std::isfinite(p)) fail_input("{}: no fluid within {} m of the probe at t = {} s", name, radius, frame.time);
+    sum += p;
+    ++e.frames;
+  }
+  if (e.frames == 0) fail_input("{}: no frame at or after t = {} s", run_dir, from);
+  e.pressure = sum / e.frames;
+  e.relative = e.pressure / e.expected - 1;
+  return e;
+}
+
+double winding_number(const TriMesh& mesh, const Vec3d& p) {
+  // Van Oosterom and Strackee's signed solid angle of each triangle seen from p.
+  double omega = 0;
+  for (const Triangle& t : mesh.triangles) {
+    const Vec3d a = mesh.vertices[t[0]] - p, b = mesh.vertices[t[1]] - p, c = mesh.vertices[t[2]] - p;
+    const double la = a.norm(), lb = b.norm(), lc = c.norm();
+    const double numerator = a.dot(b.cross(c));
+    const double denominator = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+    omega += 2 * std::atan2(numerator, denominator);
+  }
+  return omega / (4 * std::numbers::pi);
+}
+
+StabilityReport check_stability(const std::string& run_dir, const StabilityLimits& limits) {
+  StabilityReport report;
+  report.run = read_indicators(run_dir);
+  const RunRecord run = read_run(run_dir + "/run.h5");
+  const scene::Scene scene = scene::parse_scene(run.scene_text, run.scene_path);
+
+  // The solids' meshes in the world, with their bounding boxes for a quick rejection.
+  std::vector<TriMesh> solids;
+  std::vector<Aabb> boxes;
+  for (const scene::Solid& solid : scene.solids) {
+    TriMesh m = read_particles(solid.particles).mesh;
+    for (Vec3d& v : m.vertices) v = solid.to_world(v);
+    boxes.push_back(m.bounds());
+    solids.push_back(std::move(m));
+  }
+
+  for (const std::string& name : analysis::list_frames(run_dir + "/frames")) {
+    const FrameData frame = read_frame(name);
+    long bad = 0;
+    for (std::size_t i = 0; i < frame.fluid_count(); ++i) {
+      const Vec3d q(frame.x[i], frame.y[i], frame.z[i]);
+      if (!q.allFinite()) {
+        ++report.nonfinite;
+        ++bad;
+        continue;
+      }
+      if ((q.array() < scene.domain.min.array()).any() || (q.array() > scene.domain.max.array()).any()) {
+        ++report.outside_domain;
+        ++bad;
+      }
+      for (std::size_t s = 0; s < solids.size(); ++s) {
+        if ((q.array() < boxes[s].min.array()).any() || (q.array() > boxes[s].max.array()).any()) continue;
+        if (std::abs(winding_number(solids[s], q)) > 0.5) {
+          ++report.inside_solids;
+          ++bad;
+          break;
+        }
+      }
+    }
+    if (bad > 0 && report.first_bad_frame < 0) report.first_bad_frame = frame.frame;
+    ++report.frames;
+  }
+
+  auto& f = report.failures;
+  const RunIndicators& r = report.run;
+  if (!r.complete()) f.push_back("did not finish: " + r.status);
+  if (report.nonfinite > 0) f.push_back(fmt::format("{} non-finite positions", report.nonfinite));
+  if (r.removed > 0) f.push_back(fmt::format("{} particles left the domain", r.removed));
+  if (report.outside_domain > 0) f.push_back(fmt::format("{} particle positions outside the domain", report.outside_domain));
+  if (report.inside_solids > 0)
+    f.push_back(fmt::format("{} particle positions inside solids (first in frame {})", report.inside_solids,
+                            report.first_bad_frame));
+  if (!(r.density_error_worst <= limits.density_error))
+    f.push_back(fmt::format("worst density error {:.4f} above {}", r.density_error_worst, limits.density_error));
+  if (!(r.energy_growth <= limits.energy_growth))
+    f.push_back(fmt::format("energy rose {:.2e} of its initial total, above {}", r.energy_growth, limits.energy_growth));
+  return report;
+}
+
+}  // namespace bw::study

@@ -1,0 +1,80 @@
+// What the accuracy study and the stability suite measure on a finished run
+// (docs/validation.md): a run's cost and error indicators from its run file, its
+// error against Martin & Moyce's dam break or against hydrostatics, and the checks
+// every stability case must pass (no non-finite value, every particle in the domain
+// and out of every solid, density error bounded, energy not growing).
+//
+// A run folder is what bw-sim writes: RUN/run.h5 and RUN/frames/NNNNNN.h5.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "analysis/dambreak.h"
+#include "common/geometry.h"
+
+namespace bw::study {
+
+// From the run file alone.
+struct RunIndicators {
+  std::string status;            // "complete", or the error that stopped the run
+  double wall_time = 0;          // s, at the last frame written
+  double simulated_time = 0;     // s
+  double steps = 0;
+  double fluid = 0;              // particles at the first frame
+  double removed = 0;            // lost at the domain by the last frame
+  double density_error_worst = 0;  // max over frames of density_error_max
+  double energy_drift = 0;       // (E_last - E_0) / E_0, E = kinetic + potential + elastic
+  double energy_growth = 0;      // (max_f E_f - E_0) / E_0: 0 when it never rose
+  double spacing = 0, h = 0, c0 = 0;
+  bool complete() const { return status == "complete"; }
+};
+RunIndicators read_indicators(const std::string& run_dir);
+
+// Front and residual of the run's frames against the experiment (analysis/dambreak.h).
+analysis::DamBreakComparison dambreak_error(const std::string& run_dir, const analysis::DamBreakSetup& setup,
+                                            const std::string& reference_csv);
+
+struct HydrostaticError {
+  double pressure = 0;     // Pa: the probe's pressure, averaged over the frames at or after `from`
+  double expected = 0;     // Pa: rho0 |g| (surface - point z)
+  double relative = 0;     // pressure / expected - 1
+  int frames = 0;          // frames averaged
+};
+// The pressure at `point` (Shepard kernel average of radius `radius`, the same as
+// bw-measure probe) against rho0 g d, d the depth below the resting surface at
+// height `surface`; rho0 and g from the run file.
+HydrostaticError hydrostatic_error(const std::string& run_dir, const Vec3d& point, double surface, double radius,
+                                   double from);
+
+// Winding number of a closed, outward-oriented mesh around a point: 1 inside, 0
+// outside (the sum of the triangles' signed solid angles over 4 pi).
+double winding_number(const TriMesh& mesh, const Vec3d& point);
+
+struct StabilityLimits {
+  // Largest worst-frame density error a stable run may show. An impact at speed v
+  // compresses water by v / c0 (the water-hammer relation), 0.1 at the default c0 of
+  // 10 x the scene's largest speed; twice that allows for corners where the
+  // compression of two walls adds up. A blow-up goes far past it.
+  double density_error = 0.2;
+  // Largest rise of the total energy above its initial value, relative to it. A closed
+  // scene only loses energy (viscosity, wall friction, contact); symplectic Euler's
+  // bounded oscillation of the elastic energy is far below this.
+  double energy_growth = 1e-3;
+};
+
+struct StabilityReport {
+  RunIndicators run;
+  int frames = 0;
+  long nonfinite = 0;        // particle positions that are not numbers, over all frames
+  long outside_domain = 0;   // particles outside the domain box, over all frames
+  long inside_solids = 0;    // particles inside a solid's mesh, over all frames
+  int first_bad_frame = -1;  // first frame with any of the three
+  std::vector<std::string> failures;  // one line per broken check; empty: stable
+  bool stable() const { return failures.empty(); }
+};
+// Reads every frame and the scene the run file records (its solids' meshes, placed as
+// the scene places them, and its domain) and checks them against `limits`.
+StabilityReport check_stability(const std::string& run_dir, const StabilityLimits& limits);
+
+}  // namespace bw::study
