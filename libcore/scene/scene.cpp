@@ -379,6 +379,26 @@ void read_solid(Reader& r, Scene& s) {
   solid.rotation_degrees = r.vec3("rotation", solid.rotation_degrees);
   solid.scale = r.number("scale", solid.scale);
   positive(r, "scale", solid.scale);
+  if (const toml::node* n = r.node("dynamic")) {
+    const auto v = n->value_exact<bool>();
+    if (!v) r.fail("dynamic", fmt::format("expected true or false, found {}", type_name(*n)));
+    solid.dynamic = *v;
+  }
+  if (solid.dynamic) {
+    if (!r.has("density")) r.fail("density", "missing (required for a dynamic solid, kg/m^3)");
+    solid.density = r.number("density", 0);
+    positive(r, "density", solid.density);
+    solid.velocity = r.vec3("velocity", solid.velocity);
+    solid.angular_velocity = r.vec3("angular_velocity", solid.angular_velocity);
+  } else {
+    for (const char* key : {"density", "velocity", "angular_velocity"})
+      if (r.has(key)) r.fail(key, "only for a dynamic solid (dynamic = true)");
+  }
+  solid.friction = r.number("friction", solid.friction);
+  non_negative(r, "friction", solid.friction);
+  solid.restitution = r.number("restitution", solid.restitution);
+  if (!(solid.restitution >= 0 && solid.restitution <= 1))
+    r.fail("restitution", fmt::format("{} is outside [0, 1]", solid.restitution));
   r.finish();
   s.solids.push_back(solid);
 }
@@ -471,8 +491,10 @@ Scene parse_scene(std::string_view text, const std::string& path, const std::vec
     if (top.has(t) && !root.get(t)->is_table()) top.fail(t, "expected a table");
   }
   top.finish();
-  if (s.blocks.empty() && s.emitters.empty())
-    fail_input("{}: fluid: the scene has no fluid (add a [[fluid.block]] or a [[fluid.emitter]])", s.path);
+  const bool bodies = std::any_of(s.solids.begin(), s.solids.end(), [](const Solid& solid) { return solid.dynamic; });
+  if (s.blocks.empty() && s.emitters.empty() && !bodies)
+    fail_input("{}: fluid: the scene has no fluid and no dynamic solid (add a [[fluid.block]] or a [[fluid.emitter]])",
+               s.path);
   return s;
 }
 

@@ -63,9 +63,9 @@ struct Emitter {
   double stop = 0;                 // s; infinity (the default): until the end of the run
 };
 
-// A solid sampled by bw-sample. Static for now: its boundary particles stay put.
-// The table is meant to grow (dynamic, density, breakable, frc, anchored, friction,
-// restitution) without changing what is here.
+// A solid sampled by bw-sample: static (its boundary particles stay put) or dynamic
+// (a rigid body pushed by the fluid and by contacts, docs/scene.md). The table is
+// meant to grow (breakable, frc, anchored) without changing what is here.
 struct Solid {
   std::string name;                // default: the particle file's stem
   std::string particles;           // absolute path of the particle file
@@ -73,6 +73,12 @@ struct Solid {
   Vec3d translation = Vec3d::Zero();
   Vec3d rotation_degrees = Vec3d::Zero();  // about x, then y, then z (fixed axes)
   double scale = 1;
+  bool dynamic = false;            // a rigid body (needs voxels and a density)
+  double density = 0;              // kg/m^3, > 0 (required when dynamic)
+  Vec3d velocity = Vec3d::Zero();          // dynamic: initial velocity of the centre of mass (m/s)
+  Vec3d angular_velocity = Vec3d::Zero();  // dynamic: initial angular velocity, world frame (rad/s)
+  double friction = 0.5;           // Coulomb coefficient of contacts with bodies, >= 0
+  double restitution = 0.3;        // of contacts with bodies, in [0, 1]
   // x_world = rotation * (scale * x_file) + translation
   Eigen::Quaterniond rotation() const;
   Vec3d to_world(const Vec3d& p) const;
