@@ -88,6 +88,49 @@ typedef struct {
   float pad0, pad1;
 } FrameReduce;
 
+// Rigid bodies (rigid.cl). Boundary particles have an owner: a static solid (owner =
+// its scene index) or a body (owner = ContactParams.body_owner0 + the body's index).
+// What contacts need of each owner:
+typedef struct {
+  float inv_mass;     // 1 / the owner's contact mass (its mass over the weight of its contact pairs
+                      // at the last step, at least 1): 0 for static solids and fixed bodies
+  float friction;     // Coulomb coefficient
+  float damping;      // damping ratio zeta (from the restitution, rigid/contact.h)
+  float spacing;      // sampling spacing of the owner's particles (m)
+} OwnerParams;
+
+// Contacts between boundary particles of different owners (rigid.cl, boundary_forces).
+typedef struct {
+  float omega;        // contact frequency (1/s): a pair of mass m has k = m omega^2
+  float reach;        // lateral reach of a particle's contact, in the pair's widest spacing
+  float margin;       // pairs within the contact distance plus this count as touching (m)
+  bw_uint body_owner0;  // owner of body 0
+} ContactParams;
+
+// The pose of a body at the start of a step, in float for the device.
+typedef struct {
+  float cx, cy, cz;                    // centre of mass, world (m)
+  float r00, r01, r02, r10, r11, r12, r20, r21, r22;  // rotation reference -> world, row-major
+  float vx, vy, vz;                    // velocity of the centre of mass (m/s)
+  float wx, wy, wz;                    // angular velocity, world (rad/s)
+  float pad;
+} BodyPose;
+
+// A block of boundary particles (master order, one body's or one static solid's) for
+// the per-body sums; body = BW_NO_BODY for static particles (force only).
+#define BW_NO_BODY 0xffffffffu
+typedef struct {
+  bw_uint body, first, count, pad;
+} BodyBlock;
+
+// Per-block sums of the forces on boundary particles.
+typedef struct {
+  float fx, fy, fz;   // force (N)
+  float tx, ty, tz;   // torque about the body's centre of mass (N m)
+  float touching;     // weight of the contact pairs within the contact distance plus the margin
+  float pad;
+} BodyReduce;
+
 // Grid cell coordinate of a position along one axis, clamped to [0, n - 1] (also for
 // NaN, which lands in cell 0; such particles are removed before they are searched).
 BW_FN int bw_cell_coord(float v, float origin, float inv_cell, int n) {

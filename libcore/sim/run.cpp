@@ -80,6 +80,10 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
   // from the first step on, so it is refused here rather than left to blow up.
   const Parameters& p = s.setup.params;
   const double cfl_limit = p.cfl * p.h / (p.c0 + p.scene_speed);
+  if (p.dt_min > p.contact_dt && p.contact_dt < std::min(cfl_limit, p.dt_viscous))
+    fail_input("{}: time.dt_min: {} s is above the largest stable step of this scene's contacts, {:.3g} s (bodies "
+               "touch with a contact frequency of {:.4g} /s, docs/scene.md); lower time.dt_min",
+               scene.path, p.dt_min, p.contact_dt, p.contact_frequency);
   if (p.dt_min > std::min(cfl_limit, p.dt_viscous)) {
     if (cfl_limit <= p.dt_viscous)
       fail_input("{}: time.dt_min: {} s is above the largest stable step of this scene, {:.3g} s (the CFL limit "
@@ -131,11 +135,14 @@ RunSummary Simulation::run() {
   record.scene_path = fs::absolute(scene.path, ec).lexically_normal().string();
   record.device = s.context->device().label();
   record.tool = s.options.tool + " " BW_VERSION;
-  for (const scene::Solid& solid : scene.solids) {
+  for (std::size_t i = 0; i < scene.solids.size(); ++i) {
+    const scene::Solid& solid = scene.solids[i];
     SolidRecord r;
     r.name = solid.name;
     r.particles = solid.particles;
-    r.kind = "static";
+    r.kind = solid.dynamic ? "dynamic" : "static";
+    for (int b = 0; b < solver.body_count(); ++b)
+      if (solver.body_info(b).solid == static_cast<std::int32_t>(i) && solver.body_info(b).parent < 0) r.body = b;
     r.translation = solid.translation;
     r.rotation = solid.rotation();
     r.scale = solid.scale;
@@ -189,14 +196,30 @@ RunSummary Simulation::run() {
     row.removed = solver.removed_count();
     row.density_error_max = st.density_error_max;
     row.density_error_mean = st.density_error_mean;
-    row.kinetic_energy = st.kinetic;
-    row.potential_energy = st.potential;
+    row.kinetic_energy = st.kinetic + st.body_kinetic;
+    row.potential_energy = st.potential + st.body_potential;
     row.elastic_energy = st.elastic;
     row.speed_max = st.speed_max;
     row.wall_time = clock.seconds();
     record.frames.push_back(row);
+    // Bodies, including those added since the last frame (rows are never reused).
+    record.bodies.clear();
+    for (int b = 0; b < solver.body_count(); ++b) {
+      const BodyInfo& info = solver.body_info(b);
+      const rigid::MassProperties& m = solver.body(b).mass();
+      BodyRecord br;
+      br.name = info.name;
+      br.solid = info.solid;
+      br.parent = info.parent;
+      br.mass = m.mass;
+      br.inertia = m.inertia;
+      br.reference_center = m.center;
+      br.created_time = info.created_time;
+      br.voxels = info.voxels;
+      record.bodies.push_back(br);
+    }
 
-    const double energy = st.kinetic + st.potential + st.elastic;
+    const double energy = row.kinetic_energy + row.potential_energy + st.elastic;
     if (f == 0) {
       sum.energy_start = energy;
       sum.energy_highest = energy;

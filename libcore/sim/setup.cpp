@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <unordered_map>
 
 #include <fmt/format.h>
 
@@ -32,6 +33,29 @@ constexpr double kThinCell = 0.25;
 // Lattice counts are floor(length / spacing + this), so that a length of exactly n
 // spacings (up to rounding) gives n points.
 constexpr double kLatticeSlack = 1e-9;
+// A face within this fraction of a cell from a cell's plane lies on it (the
+// sampler's kGridSnap).
+constexpr double kCellPlaneSlack = 1e-6;
+// Contacts between bodies reach a contact distance of up to the widest solid
+// spacing plus a lateral reach (shaders/rigid.cl); the neighbour grid (cells of edge
+// h) must hold both, which h >= this many spacings allows.
+constexpr double kMinContactSupport = 1.25;
+// Contact stiffness (docs/scene.md, "Physics"): a boundary particle hitting another
+// solid head-on at the scene's largest speed (at least kMinContactSpeed) goes
+// kContactPenetration spacings deep; a flat face landing at that speed goes about 2.5
+// times as deep (its particles share the body's mass with the rest of the body).
+constexpr double kMinContactSpeed = 1.0;     // m/s
+constexpr double kContactPenetration = 0.1;  // spacings
+// While bodies touch, dt <= kContactStepFactor / omega: about 12 steps per period of a
+// particle's contact oscillation, so that the dashpot's damping is resolved and the
+// explicit step stays far from its limit (omega dt < 2).
+constexpr double kContactStepFactor = 0.5;
+// A dynamic solid starts overlapping fluid closer than this fraction of a spacing to
+// one of its boundary particles (fluid rests one spacing from them), and another
+// solid whose particles come closer than this fraction of the contact distance
+// (particle layers of touching solids rest one contact distance apart); or whatever
+// lies in one of its voxels that no surface crosses (the solid's inside).
+constexpr double kOverlapFraction = 0.5;
 
 double spiky(double r2, double h) {
   const double r = std::sqrt(r2);
@@ -51,6 +75,143 @@ void plane_basis(const Vec3d& n, const Vec3d& up, Vec3d& u, Vec3d& w) {
   if (a.norm() < 1e-12) a = std::abs(n.z()) < 0.9 ? Vec3d::UnitZ() : Vec3d::UnitY();
   w = (a - a.dot(n) * n).normalized();
   u = w.cross(n);
+}
+
+// Area of the part of triangle abc inside the box centre +- half (the triangle
+// clipped by the box's six planes, Sutherland-Hodgman).
+double area_in_box(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& centre, const Vec3d& half) {
+  std::vector<Vec3d> poly{a, b, c}, next;
+  for (int axis = 0; axis < 3; ++axis)
+    for (const double side : {-1.0, 1.0}) {
+      const double limit = centre[axis] + side * half[axis];
+      auto inside = [&](const Vec3d& p) { return side * (p[axis] - limit) <= 0; };
+      next.clear();
+      for (std::size_t i = 0; i < poly.size(); ++i) {
+        const Vec3d& p = poly[i];
+        const Vec3d& q = poly[(i + 1) % poly.size()];
+        if (inside(p)) next.push_back(p);
+        if (inside(p) != inside(q)) {
+          const double t = (limit - p[axis]) / (q[axis] - p[axis]);
+          next.push_back(p + t * (q - p));
+        }
+      }
+      poly.swap(next);
+      if (poly.size() < 3) return 0;
+    }
+  Vec3d twice = Vec3d::Zero();
+  for (std::size_t i = 1; i + 1 < poly.size(); ++i) twice += (poly[i] - poly[0]).cross(poly[i + 1] - poly[0]);
+  return 0.5 * twice.norm();
+}
+
+// Points hashed into cubic cells, to find those near a query point.
+class PointHash {
+ public:
+  PointHash(const std::vector<Vec3d>& points, double cell) : points_(points), cell_(cell) {
+    for (std::size_t i = 0; i < points.size(); ++i) cells_[key(coords(points[i]))].push_back(i);
+  }
+  // True when a point lies closer than `radius` (at most the cell edge) to q.
+  bool near(const Vec3d& q, double radius) const {
+    const Eigen::Array3i c = coords(q);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const auto it = cells_.find(key(c + Eigen::Array3i(dx, dy, dz)));
+          if (it == cells_.end()) continue;
+          for (const std::size_t i : it->second)
+            if ((points_[i] - q).squaredNorm() < radius * radius) return true;
+        }
+    return false;
+  }
+
+ private:
+  Eigen::Array3i coords(const Vec3d& p) const { return (p.array() / cell_).floor().cast<int>(); }
+  static std::int64_t key(const Eigen::Array3i& c) {
+    constexpr std::int64_t kOffset = 1 << 20;  // cells within +-2^20 of the origin
+    return ((c.z() + kOffset) << 42) | ((c.y() + kOffset) << 21) | (c.x() + kOffset);
+  }
+  const std::vector<Vec3d>& points_;
+  double cell_;
+  std::unordered_map<std::int64_t, std::vector<std::size_t>> cells_;
+};
+
+// A solid's boundary particles in the world at t = 0 and, for a dynamic solid, the
+// voxels of its inside (voxels that no surface crosses), for the overlap checks.
+struct BodyGeometry {
+  std::vector<Vec3d> particles;
+  double spacing = 0;
+  bool has_inside = false;
+  SampleGrid grid;
+  Eigen::Quaterniond to_file = Eigen::Quaterniond::Identity();
+  Vec3d translation = Vec3d::Zero();
+  double scale = 1;
+  std::vector<std::int64_t> inside;  // cell keys (k ny + j) nx + i, sorted
+
+  std::int64_t key(const CellIndex& c) const {
+    return (std::int64_t(c[2]) * grid.dims[1] + c[1]) * grid.dims[0] + c[0];
+  }
+  void set_interior(const SampledSolid& solid, const scene::Solid& placement) {
+    has_inside = true;
+    grid = solid.grid;
+    to_file = placement.rotation().conjugate();
+    translation = placement.translation;
+    scale = placement.scale;
+    std::vector<std::int64_t> surface;
+    for (const CellIndex& c : solid.surface) surface.push_back(key(c));
+    std::sort(surface.begin(), surface.end());
+    for (const CellIndex& c : solid.voxels) {
+      const std::int64_t k = key(c);
+      if (!std::binary_search(surface.begin(), surface.end(), k)) inside.push_back(k);
+    }
+    std::sort(inside.begin(), inside.end());
+  }
+  bool contains(const Vec3d& world) const {
+    if (!has_inside) return false;
+    const Vec3d f = (to_file * (world - translation) / scale - grid.origin) / grid.spacing;
+    CellIndex c;
+    for (int a = 0; a < 3; ++a) {
+      if (!(f[a] >= 0 && f[a] < grid.dims[a])) return false;
+      c[a] = static_cast<std::int32_t>(std::floor(f[a]));
+    }
+    return std::binary_search(inside.begin(), inside.end(), key(c));
+  }
+};
+
+std::string point_text(const Vec3d& q) { return fmt::format("({:.4g}, {:.4g}, {:.4g}) m", q.x(), q.y(), q.z()); }
+
+// A dynamic solid may not start inside the fluid or another solid (kOverlapFraction).
+void check_overlaps(const scene::Scene& s, const Setup& out, const std::vector<BodyGeometry>& geometry) {
+  const double fluid_gap = kOverlapFraction * s.spacing;
+  for (const BodySetup& body : out.bodies) {
+    const std::size_t i = body.solid;
+    const BodyGeometry& g = geometry[i];
+    double widest = 0;
+    for (const BodyGeometry& other : geometry) widest = std::max(widest, other.spacing);
+    const double cell = std::max(fluid_gap, kOverlapFraction * widest);
+    const PointHash hash(g.particles, cell);
+    Aabb box;
+    for (const Vec3d& x : g.particles) box.add(x);
+    box.min -= Vec3d::Constant(cell);
+    box.max += Vec3d::Constant(cell);
+    auto in_box = [&](const Vec3d& q) { return (q.array() >= box.min.array()).all() && (q.array() <= box.max.array()).all(); };
+    const ParticleArrays& fluid = out.fluid;
+    std::size_t block = 0, block_end = out.block_particles.empty() ? 0 : out.block_particles[0];
+    for (std::size_t k = 0; k < fluid.size(); ++k) {
+      while (k >= block_end && block + 1 < out.block_particles.size()) block_end += out.block_particles[++block];
+      const Vec3d q(fluid.x[k], fluid.y[k], fluid.z[k]);
+      if (in_box(q) && (g.contains(q) || hash.near(q, fluid_gap)))
+        fail_input("{}: solid[{}]: the dynamic solid '{}' starts overlapping the fluid of fluid.block[{}] at {} (fluid "
+                   "rests one spacing from a solid's boundary particles)",
+                   s.path, i, body.name, block, point_text(q));
+    }
+    for (std::size_t j = 0; j < geometry.size(); ++j) {
+      if (j == i) continue;
+      const double gap = kOverlapFraction * 0.5 * (g.spacing + geometry[j].spacing);
+      for (const Vec3d& q : geometry[j].particles)
+        if (in_box(q) && (g.contains(q) || hash.near(q, gap)))
+          fail_input("{}: solid[{}]: the dynamic solid '{}' starts overlapping solid[{}] ('{}') at {}", s.path, i,
+                     body.name, j, s.solids[j].name, point_text(q));
+    }
+  }
 }
 
 }  // namespace
@@ -116,7 +277,7 @@ std::int64_t EmitterLattice::layers_by(double t, double spacing) const {
   return lattice_count(distance_by(t), spacing);
 }
 
-std::vector<Vec3d> surface_normals(const SampledSolid& solid) {
+std::vector<Vec3d> surface_normals(const SampledSolid& solid, NormalWeighting weighting, std::vector<double>* flatness) {
   const SampleGrid& g = solid.grid;
   const std::int64_t nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
   auto key = [&](std::int64_t i, std::int64_t j, std::int64_t k) { return (k * ny + j) * nx + i; };
@@ -149,18 +310,32 @@ std::vector<Vec3d> surface_normals(const SampledSolid& solid) {
           if (it == keys.end() || *it != key(i, j, k)) continue;
           const Vec3d centre = g.cell_center({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j),
                                               static_cast<std::int32_t>(k)});
-          if (mesh::triangle_box_overlap(centre, half, a, b, c)) {
-            sum[static_cast<std::size_t>(it - keys.begin())] += area_normal;
-            area[static_cast<std::size_t>(it - keys.begin())] += area_normal.norm();
+          const std::size_t cell = static_cast<std::size_t>(it - keys.begin());
+          if (weighting == NormalWeighting::whole_triangles) {
+            if (!mesh::triangle_box_overlap(centre, half, a, b, c)) continue;
+            sum[cell] += area_normal;
+            area[cell] += area_normal.norm();
+          } else {
+            // Faces on the cell's planes count (their cell is the surface cell the
+            // sampler marked on their inner side), whatever the rounding of the planes.
+            const double inside = area_in_box(a, b, c, centre, half + Vec3d::Constant(kCellPlaneSlack * g.spacing));
+            const double whole = area_normal.norm();
+            if (whole > 0 && inside > 0) {
+              sum[cell] += area_normal * (inside / whole);
+              area[cell] += inside;
+            }
           }
         }
   }
   // On an edge or a corner the mean normal bisects the faces. On both faces of a part
   // thinner than a cell the normals cancel: zero (the particle's contact is then a
   // sphere, fluid_integrate).
+  if (flatness) flatness->assign(sum.size(), 0.0);
   for (std::size_t c = 0; c < sum.size(); ++c) {
     const double len = sum[c].norm();
-    sum[c] = len > kThinCell * area[c] ? Vec3d(sum[c] / len) : Vec3d::Zero();
+    const bool thick = len > kThinCell * area[c];
+    if (flatness && thick) (*flatness)[c] = len / area[c];
+    sum[c] = thick ? Vec3d(sum[c] / len) : Vec3d::Zero();
   }
   return sum;
 }
@@ -225,6 +400,7 @@ Setup prepare(const scene::Scene& s, double end_time) {
 
   // Fluid blocks on the lattice min + (i + 1/2) spacing.
   for (const scene::Block& b : s.blocks) {
+    const std::size_t before = out.fluid.size();
     const Vec3d extent = b.max - b.min;
     const std::int64_t nx = lattice_count(extent.x(), p.spacing), ny = lattice_count(extent.y(), p.spacing),
                        nz = lattice_count(extent.z(), p.spacing);
@@ -235,6 +411,7 @@ Setup prepare(const scene::Scene& s, double end_time) {
                                                     static_cast<double>(k) + 0.5);
           out.fluid.push(q, b.velocity);
         }
+    out.block_particles.push_back(out.fluid.size() - before);
   }
 
   // Emitters: one layer of lattice points, and how many particles they inject.
@@ -268,11 +445,99 @@ Setup prepare(const scene::Scene& s, double end_time) {
                "fluid.max_particles)",
                s.path, p.max_particles);
 
+  // Solids: static ones as boundary particles in the world, keeping those within h of
+  // the domain; dynamic ones as rigid bodies (all their particles: they move).
+  Aabb reach = s.domain;
+  reach.min -= Vec3d::Constant(p.h);
+  reach.max += Vec3d::Constant(p.h);
+  BoundarySet& bset = out.boundary;
+  std::vector<BodyGeometry> geometry(s.solids.size());
+  for (std::size_t i = 0; i < s.solids.size(); ++i) {
+    const scene::Solid& solid = s.solids[i];
+    SampledSolid sampled;
+    try {
+      sampled = read_particles(solid.particles);
+    } catch (const InputError& e) {
+      fail_input("{}: solid[{}].particles: {}", s.path, i, e.what());
+    }
+    const double effective = sampled.grid.spacing * solid.scale;
+    if (effective > kMaxSolidSpacingRatio * p.spacing * (1 + kLatticeSlack))
+      fail_input("{}: solid[{}].particles: sampled at spacing {} (x scale {} = {}), coarser than {} x the scene's "
+                 "spacing {}; fluid would leak through (sample it with bw-sample --spacing {})",
+                 s.path, i, sampled.grid.spacing, solid.scale, effective, kMaxSolidSpacingRatio, p.spacing,
+                 p.spacing / solid.scale);
+    bset.solid_spacing.push_back(effective);
+    out.materials.push_back({solid.friction, solid.restitution, effective});
+    const Eigen::Quaterniond q = solid.rotation();
+    const std::vector<Vec3d> positions = sampled.surface_positions();
+    std::vector<double> flatness;
+    const std::vector<Vec3d> normals = surface_normals(
+        sampled, solid.dynamic ? NormalWeighting::area_in_cell : NormalWeighting::whole_triangles, &flatness);
+    BodyGeometry& g = geometry[i];
+    g.spacing = effective;
+    for (std::size_t k = 0; k < positions.size(); ++k) g.particles.push_back(q * (solid.scale * positions[k]) + solid.translation);
+    if (solid.dynamic) {
+      if (!sampled.has_voxels || sampled.voxels.empty())
+        fail_input("{}: solid[{}].particles: {} has no voxels; a dynamic solid needs its volume (sample it with "
+                   "bw-sample --volume)",
+                   s.path, i, solid.particles_given);
+      BodySetup body;
+      body.solid = i;
+      body.name = solid.name;
+      std::vector<Vec3d> centers;
+      centers.reserve(sampled.voxels.size());
+      for (const Vec3d& c : sampled.voxel_positions()) centers.push_back(q * (solid.scale * c) + solid.translation);
+      body.mass = rigid::voxel_mass_properties(centers, effective, solid.density);
+      body.voxels = static_cast<std::int32_t>(sampled.voxels.size());
+      body.particles = g.particles;
+      for (const Vec3d& n : normals) body.normals.push_back(q * n);
+      body.flatness = flatness;
+      body.velocity = solid.velocity;
+      body.angular_velocity = solid.angular_velocity;
+      g.set_interior(sampled, solid);
+      out.bodies.push_back(std::move(body));
+      bset.per_solid.push_back(0);
+      continue;
+    }
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < positions.size(); ++k) {
+      const Vec3d& world = g.particles[k];
+      if ((world.array() < reach.min.array()).any() || (world.array() > reach.max.array()).any()) {
+        ++bset.dropped;
+        continue;
+      }
+      const Vec3d n = q * normals[k];
+      bset.particles.push(world, Vec3d::Zero());
+      bset.nx.push_back(static_cast<float>(n.x()));
+      bset.ny.push_back(static_cast<float>(n.y()));
+      bset.nz.push_back(static_cast<float>(n.z()));
+      bset.flatness.push_back(static_cast<float>(flatness[k]));
+      bset.solid.push_back(static_cast<std::uint32_t>(i));
+      ++kept;
+    }
+    bset.per_solid.push_back(kept);
+  }
+  if (!out.bodies.empty()) {
+    // Contacts search the neighbour grid (cells of edge h) for particles within the
+    // contact distance plus the lateral reach (shaders/rigid.cl).
+    double widest = 0;
+    for (const SolidMaterial& m : out.materials) widest = std::max(widest, m.spacing);
+    if (p.h < kMinContactSupport * widest)
+      fail_input("{}: smoothing_length: {} m is too short for contacts between solids sampled at {} m; dynamic "
+                 "solids need at least {} x their spacing",
+                 s.path, p.h, widest, kMinContactSupport);
+  }
+
   // The largest speed the scene gives the fluid: its initial and emitter speeds plus
   // a fall through the domain from the highest fluid source (energy conservation).
   double v_init = 0;
   for (const scene::Block& b : s.blocks) v_init = std::max(v_init, b.velocity.norm());
   for (const scene::Emitter& e : s.emitters) v_init = std::max(v_init, e.speed);
+  for (const BodySetup& b : out.bodies) {
+    double radius = 0;
+    for (const Vec3d& x : b.particles) radius = std::max(radius, (x - b.mass.center).norm());
+    v_init = std::max(v_init, b.velocity.norm() + b.angular_velocity.norm() * radius);
+  }
   double fall = 0;
   const double g = p.gravity.norm();
   if (g > 0) {
@@ -291,6 +556,8 @@ Setup prepare(const scene::Scene& s, double end_time) {
         highest = std::min(highest, down.dot(corner));
       }
     for (const scene::Emitter& e : s.emitters) highest = std::min(highest, down.dot(e.center));
+    for (const BodySetup& b : out.bodies)
+      for (const Vec3d& x : b.particles) highest = std::min(highest, down.dot(x));
     fall = std::max(0.0, lowest - highest);
   }
   p.scene_speed = std::sqrt(v_init * v_init + 2 * g * fall);
@@ -302,54 +569,22 @@ Setup prepare(const scene::Scene& s, double end_time) {
     p.k = p.rho0 * p.c0 * p.c0 / p.gamma;
   } else {
     if (!(p.scene_speed > 0))
-      fail_input("{}: fluid.c0: cannot be derived, the fluid neither moves nor falls in this scene; give fluid.c0 or "
-                 "fluid.k",
+      fail_input("{}: fluid.c0: cannot be derived, neither the fluid nor a body moves or falls in this scene; give "
+                 "fluid.c0 or fluid.k",
                  s.path);
     p.c0 = kSoundSpeedFactor * p.scene_speed;
     p.k = p.rho0 * p.c0 * p.c0 / p.gamma;
   }
   p.speed_limit = std::max(kGuardSpeedFactor * p.scene_speed, p.c0);
-
-  // Solids: boundary particles in the world, keeping those within h of the domain.
-  Aabb reach = s.domain;
-  reach.min -= Vec3d::Constant(p.h);
-  reach.max += Vec3d::Constant(p.h);
-  BoundarySet& bset = out.boundary;
-  for (std::size_t i = 0; i < s.solids.size(); ++i) {
-    const scene::Solid& solid = s.solids[i];
-    SampledSolid sampled;
-    try {
-      sampled = read_particles(solid.particles);
-    } catch (const InputError& e) {
-      fail_input("{}: solid[{}].particles: {}", s.path, i, e.what());
-    }
-    const double effective = sampled.grid.spacing * solid.scale;
-    if (effective > kMaxSolidSpacingRatio * p.spacing * (1 + kLatticeSlack))
-      fail_input("{}: solid[{}].particles: sampled at spacing {} (x scale {} = {}), coarser than {} x the scene's "
-                 "spacing {}; fluid would leak through (sample it with bw-sample --spacing {})",
-                 s.path, i, sampled.grid.spacing, solid.scale, effective, kMaxSolidSpacingRatio, p.spacing,
-                 p.spacing / solid.scale);
-    bset.solid_spacing.push_back(effective);
-    const Eigen::Quaterniond q = solid.rotation();
-    const std::vector<Vec3d> positions = sampled.surface_positions();
-    const std::vector<Vec3d> normals = surface_normals(sampled);
-    std::size_t kept = 0;
-    for (std::size_t k = 0; k < positions.size(); ++k) {
-      const Vec3d world = q * (solid.scale * positions[k]) + solid.translation;
-      if ((world.array() < reach.min.array()).any() || (world.array() > reach.max.array()).any()) {
-        ++bset.dropped;
-        continue;
-      }
-      const Vec3d n = q * normals[k];
-      bset.particles.push(world, Vec3d::Zero());
-      bset.nx.push_back(static_cast<float>(n.x()));
-      bset.ny.push_back(static_cast<float>(n.y()));
-      bset.nz.push_back(static_cast<float>(n.z()));
-      bset.solid.push_back(static_cast<std::uint32_t>(i));
-      ++kept;
-    }
-    bset.per_solid.push_back(kept);
+  p.contact_dt = std::numeric_limits<double>::infinity();
+  if (!out.bodies.empty()) {
+    // A particle that hits another solid head-on at the scene's largest speed goes
+    // kContactPenetration spacings deep: omega = v / (that depth).
+    p.contact_frequency = std::max(p.scene_speed, kMinContactSpeed) / (kContactPenetration * p.spacing);
+    p.contact_dt = kContactStepFactor / p.contact_frequency;
+    check_overlaps(s, out, geometry);
   }
+
   return out;
 }
 

@@ -12,6 +12,7 @@
 
 #include "common/geometry.h"
 #include "io/particles_file.h"
+#include "rigid/body.h"
 #include "scene/scene.h"
 
 namespace bw::sim {
@@ -51,6 +52,8 @@ struct Parameters {
   double scene_speed = 0;       // largest speed the scene can give the fluid (m/s)
   double speed_limit = 0;       // the guard stops the run above this speed (m/s)
   std::int64_t max_particles = 0;  // MFP
+  double contact_frequency = 0; // omega of contacts between bodies (1/s), 0 without bodies
+  double contact_dt = 0;        // time-step limit while bodies touch (s), infinity without bodies
   Aabb domain;                  // particles leaving it are removed
   std::array<std::int64_t, 3> grid{0, 0, 0};  // cells of edge h covering the domain
 };
@@ -74,32 +77,71 @@ struct EmitterLattice {
   double distance_by(double t) const;
 };
 
+// The boundary particles of the static solids.
 struct BoundarySet {
   ParticleArrays particles;     // world positions, zero velocities
   std::vector<float> nx, ny, nz;  // unit normal of the solid's surface at each particle (0 when unknown)
+  std::vector<float> flatness;    // of the surface there (surface_normals; contacts with bodies)
   std::vector<std::uint32_t> solid;  // index of the scene solid of each particle
-  std::vector<std::size_t> per_solid;  // kept particles per solid
+  std::vector<std::size_t> per_solid;  // kept particles per solid (0 for dynamic solids)
   std::size_t dropped = 0;      // farther than h outside the domain: never touch fluid
   std::vector<double> solid_spacing;   // effective sampling spacing (file spacing x scale)
+};
+
+// How a solid touches bodies (its [[solid]] friction and restitution).
+struct SolidMaterial {
+  double friction = 0.5;        // Coulomb coefficient
+  double restitution = 0.3;
+  double spacing = 0;           // effective sampling spacing of its particles (m)
+};
+
+// A dynamic solid as the solver starts it: a rigid body whose geometry is given in the
+// reference configuration (the solid's world coordinates at t = 0, docs/formats.md).
+struct BodySetup {
+  std::size_t solid = 0;        // scene index
+  std::string name;
+  rigid::MassProperties mass;   // from the voxels (voxel edge = file spacing x scale)
+  std::int32_t voxels = 0;
+  std::vector<Vec3d> particles; // boundary particles, reference configuration
+  std::vector<Vec3d> normals;   // unit surface normals there (zero where unknown)
+  std::vector<double> flatness; // of the surface there (surface_normals)
+  Vec3d velocity = Vec3d::Zero();          // of the centre of mass (m/s)
+  Vec3d angular_velocity = Vec3d::Zero();  // world frame (rad/s)
 };
 
 struct Setup {
   Parameters params;
   ParticleArrays fluid;         // the blocks' particles at t = 0
   std::vector<EmitterLattice> emitters;
-  BoundarySet boundary;
+  BoundarySet boundary;         // static solids
+  std::vector<BodySetup> bodies;        // dynamic solids, in scene order
+  std::vector<SolidMaterial> materials; // one per scene solid
+  std::vector<std::size_t> block_particles;  // fluid particles of each block, in order
   std::int64_t emitter_particles = 0;  // what the emitters inject over the run (before MFP)
 };
 
-// Derives the parameters and builds every initial particle. `end_time` is the run's
-// end (the scene's, or the one given on the command line). Throws InputError.
+// Derives the parameters and builds every initial particle and body. `end_time` is
+// the run's end (the scene's, or the one given on the command line). Throws
+// InputError, also for a dynamic solid without voxels or one that starts overlapping
+// the fluid or another solid.
 Setup prepare(const scene::Scene& scene, double end_time);
 
 // The surface normal at each surface particle of a sampled solid (in the file's
-// frame): the area-weighted mean normal of the triangles that overlap its cell
-// (bisecting edges and corners), or zero where they cancel (a part thinner than a
-// cell).
-std::vector<Vec3d> surface_normals(const SampledSolid& solid);
+// frame), or zero where the normals cancel (a part thinner than a cell):
+//   whole_triangles  the mean normal of the triangles that overlap its cell, each
+//                    weighted by its whole area (static solids: how the fluid's wall
+//                    contact has always seen them);
+//   area_in_cell     each weighted by its area inside the cell: the mean normal of
+//                    the surface within the cell, so that a box's edges and corners
+//                    are exact bisectors whatever the triangulation (dynamic solids,
+//                    whose contacts push along these normals).
+// `flatness`, when given, receives per particle |sum of the weighted normals| /
+// their total weight: 1 on a face, cos(45 deg) = 0.71 on a box's edge, 0.58 on its
+// corner, 0 where the normal is zero.
+enum class NormalWeighting { whole_triangles, area_in_cell };
+std::vector<Vec3d> surface_normals(const SampledSolid& solid,
+                                   NormalWeighting weighting = NormalWeighting::whole_triangles,
+                                   std::vector<double>* flatness = nullptr);
 
 // The points of one emitter layer, spaced `spacing` apart on its disc or rectangle.
 std::vector<Vec3d> emitter_points(const scene::Emitter& emitter, double spacing);

@@ -12,183 +12,10 @@
 #include "common/text.h"
 #include "compute/kernels.h"
 #include "compute/radix_sort.h"
+#include "sim/solver_impl.h"
 #include "sph_common.h"
 
 namespace bw::sim {
-namespace {
-
-using compute::Buffer;
-using compute::Kernel;
-
-// Elements past the end of every array the neighbour loops read: they load up to
-// 16 (float16, the widest BW_VW) candidates at once.
-constexpr std::size_t kPad = 16;
-// Particles per block of the reduction kernels: long enough for a serial loop to pay,
-// short enough that float partial sums stay accurate.
-constexpr std::uint32_t kReduceChunk = 512;
-// Blocks per compute unit for the reductions.
-constexpr std::uint32_t kReduceBlocksPerUnit = 64;
-// Largest grid (cells): the cell index is a 32-bit key and start[] has one entry each.
-constexpr std::uint64_t kMaxCells = std::uint64_t{1} << 30;
-// Wall contact (fluid_integrate): a fluid particle closer than kContactDistance
-// spacings to a solid's surface, over the patch of radius kPatchRadius spacings a
-// boundary particle stands for, cannot move further into the surface. Fluid at rest
-// is one spacing from the surface's particles; a CFL step moves a particle at most
-// 0.4 spacings at speeds up to c0, less than 0.6; patches of 0.75 spacings around
-// particles one spacing apart cover a flat surface without gaps (0.71 would do).
-constexpr double kContactDistance = 0.6;
-constexpr double kPatchRadius = 0.75;
-// A step shorter than this fraction of the proposed dt before a frame time would be
-// a sliver: the last two steps share the remaining time instead.
-constexpr double kSplitBeforeFrame = 2.0;
-
-std::uint32_t u32(std::int64_t v) { return static_cast<std::uint32_t>(v); }
-
-}  // namespace
-
-struct Solver::Impl {
-  compute::Context& ctx;
-  Parameters params;
-  SimParams P{};
-  std::uint32_t ncells = 0;
-  std::uint32_t capacity = 0;
-
-  compute::Program grid_program, fluid_program;
-  Kernel fluid_keys, boundary_keys, cell_starts, reorder, gather_float, gather_uint, neighbour_lists;
-  Kernel psi, density, forces, integrate, step_reduce, frame_reduce, emit;
-  std::unique_ptr<compute::RadixSort> sort;
-
-  // fluid
-  std::array<Buffer, 2> x, y, z, vx, vy, vz, id, hold;
-  int front = 0;
-  Buffer keys, values, keys_tmp, values_tmp;
-  Buffer rho, pres, pterm, vol, phi, ax, ay, az, start;
-  // boundary
-  Buffer bx, by, bz, bpsi, bvx, bvy, bvz, bnx, bny, bnz, bsolid, bstart;
-  std::uint32_t nb = 0;
-  ParticleArrays boundary_host;
-  // reductions
-  Buffer step_out, frame_out;
-  // emitters
-  std::vector<EmitterLattice> emitters;
-  std::vector<std::uint32_t> emitter_first_point;
-  std::vector<std::int64_t> emitter_layers;
-  Buffer ex, ey, ez, emitter_table;
-  bool capped = false;
-
-  // state
-  double t = 0;
-  std::int64_t steps = 0;
-  std::uint32_t n = 0;          // particles in the arrays (live, plus any to be removed)
-  std::int64_t removed = 0;
-  std::uint32_t next_id = 0;
-  bool grid_valid = false;
-
-  explicit Impl(compute::Context& c) : ctx(c) {}
-
-  int back() const { return 1 - front; }
-
-  std::uint32_t reduce_blocks(std::uint32_t count, std::uint32_t& chunk) const {
-    const std::uint32_t units = static_cast<std::uint32_t>(std::max(1, ctx.device().compute_units));
-    std::uint32_t blocks = std::max<std::uint32_t>(1, (count + kReduceChunk - 1) / kReduceChunk);
-    blocks = std::min(blocks, units * kReduceBlocksPerUnit);
-    chunk = std::max<std::uint32_t>(1, (count + blocks - 1) / blocks);
-    return (count + chunk - 1) / chunk;
-  }
-
-  Buffer floats(std::size_t count, const std::string& name) { return ctx.buffer((count + kPad) * sizeof(float), name); }
-  Buffer uints(std::size_t count, const std::string& name) {
-    return ctx.buffer((count + kPad) * sizeof(std::uint32_t), name);
-  }
-
-  // Sorts the fluid by cell, finds the cell starts and computes density and pressure
-  // for the current positions (once per state).
-  void ensure_grid() {
-    if (grid_valid) return;
-    const int f = front, b = back();
-    if (n > 0) {
-      fluid_keys.args(P, n, x[f], y[f], z[f], keys, values);
-      ctx.launch(fluid_keys, n);
-      sort->sort(keys, values, keys_tmp, values_tmp, n, ncells);
-      reorder.args(n, values, x[f], y[f], z[f], vx[f], vy[f], vz[f], id[f], hold[f], x[b], y[b], z[b], vx[b], vy[b],
-                   vz[b], id[b], hold[b]);
-      ctx.launch(reorder, n);
-      front = b;
-    }
-    cell_starts.args(n, ncells, keys, start);
-    ctx.launch(cell_starts, std::size_t(n) + 1);
-    density.args(P, start, x[front], y[front], z[front], bstart, bx, by, bz, bpsi, rho, pres, pterm, vol, phi);
-    ctx.launch(density, n);
-    grid_valid = true;
-  }
-
-  std::uint32_t read_live() {
-    std::uint32_t live = 0;
-    ctx.read(start, &live, sizeof(live), std::size_t(ncells) * sizeof(std::uint32_t));
-    return live;
-  }
-
-  // After a sort: drop the particles that left the domain from the count.
-  void settle_count() {
-    const std::uint32_t live = read_live();
-    removed += n - live;
-    n = live;
-  }
-
-  float read_float(const Buffer& buffer, std::uint32_t i) {
-    float v = 0;
-    ctx.read(buffer, &v, sizeof(v), std::size_t(i) * sizeof(float));
-    return v;
-  }
-
-  std::string describe_particle(std::uint32_t i) {
-    const int f = front;
-    std::uint32_t pid = 0;
-    ctx.read(id[f], &pid, sizeof(pid), std::size_t(i) * sizeof(std::uint32_t));
-    const float px = read_float(x[f], i), py = read_float(y[f], i), pz = read_float(z[f], i);
-    const float ux = read_float(vx[f], i), uy = read_float(vy[f], i), uz = read_float(vz[f], i);
-    return fmt::format("particle {} at ({:.4g}, {:.4g}, {:.4g}) m with velocity ({:.4g}, {:.4g}, {:.4g}) m/s", pid, px,
-                       py, pz, ux, uy, uz);
-  }
-
-  [[noreturn]] void blow_up(const std::string& what) const {
-    fail_run("step {} (t = {:.6f} s): {}; the fluid blew up (lower time.dt_max or time.cfl, or raise fluid.mu)",
-             steps + 1, t, what);
-  }
-
-  std::int64_t emit_after_step() {
-    std::int64_t emitted = 0;
-    for (std::size_t e = 0; e < emitters.size(); ++e) {
-      const EmitterLattice& em = emitters[e];
-      const std::int64_t target = em.layers_by(t, params.spacing);
-      const double travelled = em.distance_by(t);
-      const std::uint32_t per_layer = static_cast<std::uint32_t>(em.points.size());
-      for (std::int64_t layer = emitter_layers[e]; layer < target; ++layer) {
-        const std::int64_t room = std::int64_t(capacity) - std::int64_t(n);
-        const std::uint32_t count = static_cast<std::uint32_t>(std::clamp<std::int64_t>(room, 0, per_layer));
-        if (count < per_layer) capped = true;
-        if (count > 0) {
-          // Layer k crossed the emitter when the fluid had moved (k + 1) spacings.
-          const double offset = travelled - static_cast<double>(layer + 1) * params.spacing;
-          const Vec3d o = em.normal * offset;
-          const Vec3d v = em.normal * em.speed;
-          const int f = front;
-          emit.args(count, n, next_id, emitter_first_point[e], static_cast<std::uint32_t>(e), ex, ey, ez,
-                    static_cast<float>(o.x()), static_cast<float>(o.y()), static_cast<float>(o.z()),
-                    static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z()), x[f], y[f], z[f],
-                    vx[f], vy[f], vz[f], id[f], hold[f]);
-          ctx.launch(emit, count);
-          n += count;
-          next_id += count;
-          emitted += count;
-        }
-      }
-      emitter_layers[e] = target;
-    }
-    if (emitted) grid_valid = false;
-    return emitted;
-  }
-};
 
 Solver::Solver(const Setup& setup, compute::Context& context)
     : impl_(std::make_unique<Impl>(context)) {
@@ -404,6 +231,29 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   context.write_vector(s.ex, px);
   context.write_vector(s.ey, py);
   context.write_vector(s.ez, pz);
+
+  // Rigid bodies: the dynamic solids, in their reference configuration with their
+  // initial velocities.
+  s.static_boundary = setup.boundary;
+  s.materials = setup.materials;
+  for (const BodySetup& b : setup.bodies) {
+    BodySpec spec;
+    spec.name = b.name;
+    spec.solid = static_cast<std::int32_t>(b.solid);
+    spec.mass = b.mass;
+    spec.voxels = b.voxels;
+    spec.particles = b.particles;
+    spec.normals = b.normals;
+    spec.flatness = b.flatness;
+    const SolidMaterial& m = setup.materials.at(b.solid);
+    spec.spacing = m.spacing;
+    spec.friction = m.friction;
+    spec.restitution = m.restitution;
+    spec.state.position = b.mass.center;
+    spec.state.linear_velocity = b.velocity;
+    spec.state.angular_velocity = b.angular_velocity;
+    s.add_body(spec);
+  }
 }
 
 Solver::~Solver() = default;
@@ -442,8 +292,10 @@ StepInfo Solver::step(double t_target) {
                           s.describe_particle(static_cast<std::uint32_t>(fastest)), vmax, p.speed_limit));
   s.settle_count();
 
-  // Adaptive step: CFL, force and viscous limits, clamped, landing on t_target.
-  double dt = p.cfl * p.h / (p.c0 + vmax);
+  // Adaptive step: CFL (over the fluid and the bodies' particles), force and viscous
+  // limits, the contact limit while bodies touch, at most dt_max, landing on t_target.
+  const double vbody = s.rigid ? s.body_speed_max() : 0.0;
+  double dt = p.cfl * p.h / (p.c0 + std::max(vmax, vbody));
   const char* limit = "CFL";
   if (amax > 0 && p.force_factor * std::sqrt(p.h / amax) < dt) {
     dt = p.force_factor * std::sqrt(p.h / amax);
@@ -452,6 +304,10 @@ StepInfo Solver::step(double t_target) {
   if (p.dt_viscous < dt) {
     dt = p.dt_viscous;
     limit = "viscous";
+  }
+  if (s.rigid && s.rigid->touching_now && p.contact_dt < dt) {
+    dt = p.contact_dt;
+    limit = "contact";
   }
   // A step below dt_min would be needed: stop rather than take an unstable one (a
   // dt_min above the limits at the start is refused before the run, sim/run.cpp).
@@ -469,10 +325,12 @@ StepInfo Solver::step(double t_target) {
     dt = 0.5 * remaining;
   }
 
+  if (s.rigid) s.rigid_forces(dt);
   s.integrate.args(s.P, s.n, static_cast<float>(dt), s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.ax, s.ay,
                    s.az, s.phi, s.bstart, s.bx, s.by, s.bz, s.bnx, s.bny, s.bnz, s.bvx, s.bvy, s.bvz, s.hold[f],
                    s.emitter_table);
   s.ctx.launch(s.integrate, s.n);
+  if (s.rigid) s.step_bodies(dt);
   s.grid_valid = false;
   s.t = lands ? t_target : s.t + dt;
   ++s.steps;
@@ -503,7 +361,7 @@ std::uint64_t Solver::device_bytes() const {
                           &s.ay, &s.az, &s.start, &s.bx, &s.by, &s.bz, &s.bpsi, &s.bvx, &s.bvy, &s.bvz, &s.bnx, &s.bny, &s.bnz, &s.bsolid,
                           &s.bstart, &s.step_out, &s.frame_out, &s.ex, &s.ey, &s.ez, &s.emitter_table})
     total += b->bytes();
-  return total + s.sort->scratch_bytes();
+  return total + s.sort->scratch_bytes() + s.rigid_bytes() + s.bflat.bytes();
 }
 
 std::int64_t Solver::fluid_count() {
@@ -523,6 +381,7 @@ FluidStats Solver::stats() {
   s.settle_count();
   FluidStats out;
   out.fluid = s.n;
+  s.body_energies(out.body_kinetic, out.body_potential);
   if (s.n == 0) return out;
   std::uint32_t chunk = 0;
   const std::uint32_t blocks = s.reduce_blocks(s.n, chunk);
@@ -566,11 +425,16 @@ FrameData Solver::frame(const FrameFields& fields, int frame_index) {
     const auto ids = s.ctx.read_vector<std::uint32_t>(s.id[f], n);
     d.id.assign(ids.begin(), ids.end());
   }
-  if (fields.boundary) {
+  if (fields.boundary && s.rigid) {  // master order: the static solids', then each body's
+    d.bx = s.ctx.read_vector<float>(s.rigid->mx, s.nb);
+    d.by = s.ctx.read_vector<float>(s.rigid->my, s.nb);
+    d.bz = s.ctx.read_vector<float>(s.rigid->mz, s.nb);
+  } else if (fields.boundary) {
     d.bx = s.boundary_host.x;
     d.by = s.boundary_host.y;
     d.bz = s.boundary_host.z;
   }
+  d.bodies = body_states();
   return d;
 }
 

@@ -12,26 +12,35 @@
 // reduction (max |v|, max |a|, non-finite values; the one small read per step) ->
 // dt on the host -> symplectic Euler with wall contact -> emitters.
 //
-// Moving solids fit this layout as follows. Boundary particles carry the solid's
-// index (bsolid) and a velocity (bvx, bvy, bvz, zero for static solids) that the
-// friction term and the contact rule already use. To move a body, recompute its
-// particles' positions, velocities and normals from reference arrays and the body's
-// pose, then sort the boundary again (boundary_keys, the radix sort, the gathers and
-// cell_starts, as at construction) before the density of the next step; Psi_b only
-// changes when a body's own particles change (fracture). The force of the fluid on a
-// boundary particle b is the negative of what b does to its fluid neighbours in
-// fluid_forces (boundary pressure and friction, and the contact impulse of
-// fluid_integrate): a kernel over boundary particles can gather it from the fluid
-// grid (start, x, ...) without atomics, and a per-body sum over blocks of boundary
-// particles in body order gives force and torque deterministically.
+// Rigid bodies (shaders/rigid.cl; only when the scene has dynamic solids or a body
+// is added: a scene without bodies runs no rigid kernel and allocates nothing for
+// them). Boundary particles then also live in a master order: the static solids'
+// particles first (in scene order), then each body's particles in a contiguous range,
+// body after body. Master arrays hold the world positions, velocities and normals
+// (bodies' recomputed every step from reference arrays and the pose), Psi_b and the
+// owner (a static solid's index, or body_owner0 + the body's index); every step the
+// boundary is sorted again from them (boundary_keys, the radix sort, a gather,
+// cell_starts) before the fluid's density. Psi_b is computed for an owner when its
+// particles are new (boundary_psi_owners) and kept, since a rigid motion leaves it
+// unchanged. After the fluid's forces and the time step, boundary_forces gathers, per
+// boundary particle of a body, the fluid's reaction (the exact negative of the
+// boundary pressure and friction terms of fluid_forces and of the momentum its
+// patch takes in fluid_integrate's wall contact) and the contacts with other
+// owners' particles; body_reduce sums fixed blocks of one body's particles, and the
+// host adds the blocks of each body in order (double), adds gravity and steps the
+// bodies (rigid::Body::step) in step with the fluid's symplectic Euler.
+#pragma once
+
 #pragma once
 
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "compute/context.h"
 #include "io/frame_file.h"
+#include "rigid/body.h"
 #include "sim/setup.h"
 
 namespace bw::sim {
@@ -43,12 +52,44 @@ struct StepInfo {
   std::int64_t emitted = 0;   // particles the emitters added after the step
 };
 
-// Sums over the fluid at one instant (frame statistics).
+// Sums over the fluid at one instant (frame statistics), and the bodies' energies.
 struct FluidStats {
   double kinetic = 0, potential = 0, elastic = 0;  // J
   double density_error_max = 0, density_error_mean = 0;  // of max(0, rho/rho0 - 1)
   double speed_max = 0;
   std::int64_t fluid = 0;
+  double body_kinetic = 0, body_potential = 0;  // J, of the active bodies (potential as the fluid's)
+};
+
+// A rigid body to add to a running solver (a dynamic solid at the start, a fragment
+// of a broken one later). Geometry is in the reference configuration of its root
+// solid (docs/formats.md, "Body poses"); the state's position is where mass.center is
+// now.
+struct BodySpec {
+  std::string name;
+  std::int32_t solid = -1;          // root solid (scene index)
+  std::int32_t parent = -1;         // body it broke from, -1 for a solid's own body
+  rigid::MassProperties mass;       // reference configuration; mass > 0
+  std::int32_t voxels = 0;          // voxels it was made of (run file)
+  std::vector<Vec3d> particles;     // boundary particles, reference configuration
+  std::vector<Vec3d> normals;       // their unit surface normals (zero where unknown)
+  std::vector<double> flatness;     // of the surface there, in [0, 1] (sim::surface_normals): 1 on
+                                    // faces, 0.71 on a box's edges; empty: all faces
+  double spacing = 0;               // sampling spacing of the particles (m)
+  double friction = 0.5, restitution = 0.3;
+  bool fixed = false;               // does not move (an anchored fragment)
+  rigid::BodyState state;           // pose and velocities now
+};
+
+// What the run file records of a body (docs/formats.md, /bodies).
+struct BodyInfo {
+  std::string name;
+  std::int32_t solid = -1, parent = -1;
+  std::int32_t voxels = 0;
+  double created_time = 0;
+  bool fixed = false;
+  bool active = true;               // false once retired (its row stays)
+  std::size_t particles = 0;        // boundary particles now
 };
 
 class Solver {
@@ -80,6 +121,38 @@ class Solver {
   compute::Context& context();
   std::uint64_t device_bytes() const;     // held by the solver's buffers
   std::int64_t capacity() const;          // MFP
+
+  // Rigid bodies. Body indices are rows of the run file's /bodies and never reused.
+  // Changes take effect at the next step (the boundary is sorted again, Psi_b
+  // computed for the new particles only).
+  int add_body(const BodySpec& spec);
+  // New boundary particles of a body (reference configuration), e.g. with crack
+  // faces; its Psi_b is recomputed, its mass properties stay. `flatness` as in
+  // BodySpec (empty: all faces).
+  void replace_body_particles(int body, const std::vector<Vec3d>& particles, const std::vector<Vec3d>& normals,
+                              const std::vector<double>& flatness = {});
+  // A fixed body keeps its pose and acts on others like a static solid.
+  void set_body_fixed(int body, bool fixed);
+  // Takes a body out of the simulation (its particles go; its index stays).
+  void retire_body(int body);
+  int body_count() const;
+  const BodyInfo& body_info(int body) const;
+  const rigid::Body& body(int body) const;
+  rigid::BodyState& body_state(int body);   // e.g. to give a fragment its velocity
+  // Force and torque (about the centre of mass, world) of the last step, gravity
+  // included (N, N m).
+  Vec3d body_force(int body) const;
+  Vec3d body_torque(int body) const;
+  // States of the active bodies (frame files).
+  BodyStates body_states() const;
+  // Master index of a body's first boundary particle, valid until bodies change.
+  std::uint32_t body_first_particle(int body) const;
+
+  // For tests and diagnostics: also sum the forces on the static solids' particles
+  // (fluid reaction and contacts with bodies) and accumulate their impulse over the
+  // steps since this was turned on (N s). Runs the rigid stage even without bodies.
+  void measure_static_reactions(bool on);
+  Vec3d static_impulse() const;
 
   // For tests: the sorted fluid positions and, per particle, the sorted indices of
   // its neighbours within h (including itself).

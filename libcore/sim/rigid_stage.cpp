@@ -1,0 +1,502 @@
+// The rigid bodies of the solver (sim/solver.h, "Rigid bodies"): the master order of
+// the boundary, its sort every step, Psi_b of new particles, the forces on the
+// bodies' particles and their per-body sums, and the bodies' steps on the host.
+#include <cmath>
+#include <limits>
+
+#include "compute/kernels.h"
+#include "rigid/contact.h"
+#include "sim/solver_impl.h"
+
+namespace bw::sim {
+namespace {
+
+// Particles per block of the per-body sums: a block never holds two bodies, and a
+// float sum over this many forces stays accurate to about 1e-5 (the host adds the
+// blocks in double).
+constexpr std::uint32_t kBodyBlock = 256;
+// Room for more boundary particles when the arrays grow (fragments, new crack faces),
+// so that they are not reallocated at every change.
+constexpr double kBoundaryGrowth = 1.25;
+// Lateral reach of a boundary particle's contact, in the pair's widest spacing: the
+// weight (1 - l^2/R^2)^2 summed over a square lattice of spacing s varies by 2% with
+// where the particle lies over it at R = 1.5 s (by 20% at R = s).
+constexpr float kContactReach = 1.5f;
+// Pairs within the contact distance plus this fraction of the scene's spacing count
+// as touching: the next step then takes the contact time step. A CFL step moves a
+// particle less than 0.4 h, and bodies move far less (c0 >= 10 x their speed).
+constexpr double kTouchMargin = 0.5;
+
+BodyPose pose_of(const rigid::Body& body) {
+  const rigid::BodyState& st = body.state();
+  const Mat3d r = body.rotation();
+  BodyPose p{};
+  p.cx = static_cast<float>(st.position.x());
+  p.cy = static_cast<float>(st.position.y());
+  p.cz = static_cast<float>(st.position.z());
+  p.r00 = static_cast<float>(r(0, 0)), p.r01 = static_cast<float>(r(0, 1)), p.r02 = static_cast<float>(r(0, 2));
+  p.r10 = static_cast<float>(r(1, 0)), p.r11 = static_cast<float>(r(1, 1)), p.r12 = static_cast<float>(r(1, 2));
+  p.r20 = static_cast<float>(r(2, 0)), p.r21 = static_cast<float>(r(2, 1)), p.r22 = static_cast<float>(r(2, 2));
+  p.vx = static_cast<float>(st.linear_velocity.x());
+  p.vy = static_cast<float>(st.linear_velocity.y());
+  p.vz = static_cast<float>(st.linear_velocity.z());
+  p.wx = static_cast<float>(st.angular_velocity.x());
+  p.wy = static_cast<float>(st.angular_velocity.y());
+  p.wz = static_cast<float>(st.angular_velocity.z());
+  return p;
+}
+
+OwnerParams owner_params(double mass_per_particle, double friction, double restitution, double spacing) {
+  OwnerParams o{};
+  o.inv_mass = mass_per_particle > 0 ? static_cast<float>(1.0 / mass_per_particle) : 0.0f;
+  o.friction = static_cast<float>(friction);
+  o.damping = static_cast<float>(rigid::damping_ratio(restitution));
+  o.spacing = static_cast<float>(spacing);
+  return o;
+}
+
+bool finite(const Vec3d& v) { return v.allFinite(); }
+
+}  // namespace
+
+BodyEntry& Solver::Impl::body_entry(int body) {
+  if (!rigid || body < 0 || body >= static_cast<int>(rigid->bodies.size()))
+    fail_run("no body {} (the solver has {})", body, rigid ? rigid->bodies.size() : 0);
+  return rigid->bodies[static_cast<std::size_t>(body)];
+}
+
+const BodyEntry& Solver::Impl::body_entry(int body) const {
+  return const_cast<Impl*>(this)->body_entry(body);
+}
+
+void Solver::Impl::enable_bodies() {
+  if (rigid) return;
+  rigid = std::make_unique<RigidStage>();
+  RigidStage& r = *rigid;
+  r.program = ctx.build("rigid.cl", compute::embedded_kernels(), compute::kernel_build_options(ctx.device()));
+  r.pose = r.program.kernel("body_pose");
+  r.gather = r.program.kernel("boundary_gather");
+  r.psi = r.program.kernel("boundary_psi_owners");
+  r.forces = r.program.kernel("boundary_forces");
+  r.reduce = r.program.kernel("body_reduce");
+  r.materials = materials;
+  r.body_owner0 = static_cast<std::uint32_t>(materials.size());
+  const BoundarySet& b = static_boundary;
+  r.ns = static_cast<std::uint32_t>(b.particles.size());
+  r.sx = b.particles.x, r.sy = b.particles.y, r.sz = b.particles.z;
+  r.snx = b.nx, r.sny = b.ny, r.snz = b.nz;
+  r.sflat = b.flatness;
+  r.sowner = b.solid;
+  r.spsi.assign(r.ns, 0.0f);
+  r.static_psi_dirty = true;
+  r.layout_dirty = true;
+  boundary_dirty = true;
+}
+
+int Solver::Impl::add_body(const BodySpec& spec) {
+  if (spec.particles.size() != spec.normals.size())
+    fail_run("body '{}': {} particles but {} normals", spec.name, spec.particles.size(), spec.normals.size());
+  if (!(spec.spacing > 0)) fail_run("body '{}': spacing {} must be positive", spec.name, spec.spacing);
+  enable_bodies();
+  BodyEntry e;
+  e.body = rigid::Body(spec.mass);  // checks the mass
+  e.body.state() = spec.state;
+  e.info.name = spec.name;
+  e.info.solid = spec.solid;
+  e.info.parent = spec.parent;
+  e.info.voxels = spec.voxels;
+  e.info.created_time = t;
+  e.info.fixed = spec.fixed;
+  e.spacing = spec.spacing;
+  e.friction = spec.friction;
+  e.restitution = spec.restitution;
+  rigid->bodies.push_back(std::move(e));
+  const int index = static_cast<int>(rigid->bodies.size()) - 1;
+  replace_body_particles(index, spec.particles, spec.normals, spec.flatness);
+  return index;
+}
+
+void Solver::Impl::replace_body_particles(int body, const std::vector<Vec3d>& particles,
+                                          const std::vector<Vec3d>& normals, const std::vector<double>& flatness) {
+  BodyEntry& e = body_entry(body);
+  if (particles.size() != normals.size() || (!flatness.empty() && flatness.size() != particles.size()))
+    fail_run("body '{}': {} particles, {} normals and {} flatness values", e.info.name, particles.size(),
+             normals.size(), flatness.size());
+  e.flatness.assign(particles.size(), 1.0f);
+  for (std::size_t i = 0; i < flatness.size(); ++i) e.flatness[i] = static_cast<float>(flatness[i]);
+  const Vec3d c = e.body.mass().center;
+  e.reference.clear();
+  e.reference_normals = normals;
+  e.radius = 0;
+  for (const Vec3d& q : particles) {
+    e.reference.push_back(q - c);
+    e.radius = std::max(e.radius, (q - c).norm());
+  }
+  e.info.particles = particles.size();
+  e.psi.assign(particles.size(), 0.0f);
+  e.psi_dirty = true;
+  rigid->layout_dirty = true;
+  boundary_dirty = true;
+}
+
+void Solver::Impl::upload_layout() {
+  RigidStage& r = *rigid;
+  // Master order: static particles, then each body's in index order.
+  std::uint32_t total = r.ns;
+  for (BodyEntry& e : r.bodies) {
+    e.first = total;
+    total += static_cast<std::uint32_t>(e.info.active ? e.reference.size() : 0);
+  }
+  if (total > r.capacity) {
+    // (Re)allocate every per-particle array, the solver's sorted ones included, and
+    // put the static particles back.
+    const std::size_t cap = static_cast<std::size_t>(std::ceil(kBoundaryGrowth * total));
+    r.capacity = static_cast<std::uint32_t>(cap);
+    for (auto [buffer, name] : {std::pair{&r.mx, "x"}, {&r.my, "y"}, {&r.mz, "z"}, {&r.mvx, "vx"}, {&r.mvy, "vy"},
+                                {&r.mvz, "vz"}, {&r.mnx, "normal x"}, {&r.mny, "normal y"}, {&r.mnz, "normal z"}, {&r.mflat, "flatness"},
+                                {&r.mpsi, "psi"}, {&r.fx, "force x"}, {&r.fy, "force y"}, {&r.fz, "force z"},
+                                {&r.tx, "torque x"}, {&r.ty, "torque y"}, {&r.tz, "torque z"},
+                                {&r.touching, "contact pairs"}})
+      *buffer = floats(cap, fmt::format("boundary {} (master order)", name));
+    for (auto [buffer, name] : {std::pair{&r.rx, "x"}, {&r.ry, "y"}, {&r.rz, "z"}, {&r.rnx, "normal x"},
+                                {&r.rny, "normal y"}, {&r.rnz, "normal z"}})
+      *buffer = floats(cap, fmt::format("body particles reference {}", name));
+    r.pbody = uints(cap, "body particles body");
+    r.mowner = uints(cap, "boundary owner (master order)");
+    r.keys = uints(cap, "boundary keys");
+    r.order = uints(cap, "boundary order");
+    r.keys_tmp = uints(cap, "boundary keys (sort scratch)");
+    r.order_tmp = uints(cap, "boundary order (sort scratch)");
+    r.rank = uints(cap, "boundary rank");
+    bx = floats(cap, "boundary x");
+    by = floats(cap, "boundary y");
+    bz = floats(cap, "boundary z");
+    bpsi = floats(cap, "boundary psi");
+    bvx = floats(cap, "boundary vx");
+    bvy = floats(cap, "boundary vy");
+    bvz = floats(cap, "boundary vz");
+    bnx = floats(cap, "boundary normal x");
+    bny = floats(cap, "boundary normal y");
+    bnz = floats(cap, "boundary normal z");
+    bsolid = uints(cap, "boundary owner");
+    bflat = floats(cap, "boundary flatness");
+    ctx.write_vector(r.mx, r.sx);
+    ctx.write_vector(r.my, r.sy);
+    ctx.write_vector(r.mz, r.sz);
+    ctx.write_vector(r.mnx, r.snx);
+    ctx.write_vector(r.mny, r.sny);
+    ctx.write_vector(r.mnz, r.snz);
+    ctx.write_vector(r.mflat, r.sflat);
+    ctx.write_vector(r.mowner, r.sowner);
+    ctx.write_vector(r.mpsi, r.spsi);
+  }
+  // The bodies' part: reference arrays, body and owner of each particle, and the Psi_b
+  // known so far (new particles get theirs after the sort).
+  std::vector<float> rx, ry, rz, rnx, rny, rnz, flat, known_psi;
+  std::vector<std::uint32_t> pbody, owner;
+  for (std::size_t k = 0; k < r.bodies.size(); ++k) {
+    const BodyEntry& e = r.bodies[k];
+    if (!e.info.active) continue;
+    for (std::size_t i = 0; i < e.reference.size(); ++i) {
+      rx.push_back(static_cast<float>(e.reference[i].x()));
+      ry.push_back(static_cast<float>(e.reference[i].y()));
+      rz.push_back(static_cast<float>(e.reference[i].z()));
+      rnx.push_back(static_cast<float>(e.reference_normals[i].x()));
+      rny.push_back(static_cast<float>(e.reference_normals[i].y()));
+      rnz.push_back(static_cast<float>(e.reference_normals[i].z()));
+      pbody.push_back(static_cast<std::uint32_t>(k));
+      owner.push_back(r.body_owner0 + static_cast<std::uint32_t>(k));
+    }
+    known_psi.insert(known_psi.end(), e.psi.begin(), e.psi.end());
+    flat.insert(flat.end(), e.flatness.begin(), e.flatness.end());
+  }
+  ctx.write_vector(r.rx, rx);
+  ctx.write_vector(r.ry, ry);
+  ctx.write_vector(r.rz, rz);
+  ctx.write_vector(r.rnx, rnx);
+  ctx.write_vector(r.rny, rny);
+  ctx.write_vector(r.rnz, rnz);
+  ctx.write_vector(r.pbody, pbody);
+  ctx.write_vector(r.mowner, owner, r.ns);
+  ctx.write_vector(r.mpsi, known_psi, r.ns);
+  ctx.write_vector(r.mflat, flat, r.ns);
+
+  r.owners = ctx.buffer((r.body_owner0 + std::max<std::size_t>(1, r.bodies.size())) * sizeof(OwnerParams), "owners");
+  r.poses = ctx.buffer(std::max<std::size_t>(1, r.bodies.size()) * sizeof(BodyPose), "body poses");
+
+  // Blocks of the per-body sums: the moving bodies' particles (and the static ones
+  // when their reactions are measured), never two owners' in one block.
+  r.block_table.clear();
+  auto add_blocks = [&](std::uint32_t body, std::uint32_t first, std::uint32_t count) {
+    for (std::uint32_t k = 0; k < count; k += kBodyBlock)
+      r.block_table.push_back(BodyBlock{body, first + k, std::min(kBodyBlock, count - k), 0});
+  };
+  if (r.measure_static) add_blocks(BW_NO_BODY, 0, r.ns);
+  for (std::size_t k = 0; k < r.bodies.size(); ++k) {
+    const BodyEntry& e = r.bodies[k];
+    if (e.info.active && !e.info.fixed)
+      add_blocks(static_cast<std::uint32_t>(k), e.first, static_cast<std::uint32_t>(e.reference.size()));
+  }
+  r.blocks = ctx.buffer(std::max<std::size_t>(1, r.block_table.size()) * sizeof(BodyBlock), "body blocks");
+  ctx.write_vector(r.blocks, r.block_table);
+  r.block_sums = ctx.buffer(std::max<std::size_t>(1, r.block_table.size()) * sizeof(BodyReduce), "body block sums");
+  r.dirty = uints(r.body_owner0 + r.bodies.size(), "Psi_b requests");
+  r.weights_unknown = true;
+  r.nb = total;
+  nb = total;
+  r.layout_dirty = false;
+}
+
+// What contacts need of every owner: static solids have no mass (inv_mass 0), as do
+// fixed and retired bodies; a moving body's contact mass is its mass over the weight
+// of its contact pairs at the last step (at least 1).
+void Solver::Impl::upload_owners() {
+  RigidStage& r = *rigid;
+  std::vector<OwnerParams> owners;
+  for (const SolidMaterial& m : r.materials) owners.push_back(owner_params(0, m.friction, m.restitution, m.spacing));
+  for (const BodyEntry& e : r.bodies) {
+    const bool moves = e.info.active && !e.info.fixed && !e.reference.empty();
+    const double contact_mass = moves ? e.body.mass().mass / std::max(1.0, e.contact_weight) : 0.0;
+    owners.push_back(owner_params(contact_mass, e.friction, e.restitution, e.spacing));
+  }
+  ctx.write_vector(r.owners, owners);
+}
+
+void Solver::Impl::update_boundary() {
+  RigidStage& r = *rigid;
+  if (r.layout_dirty) upload_layout();
+  const std::uint32_t total = r.nb, nd = r.nb - r.ns;
+  std::vector<BodyPose> poses;
+  for (const BodyEntry& e : r.bodies) poses.push_back(pose_of(e.body));
+  ctx.write_vector(r.poses, poses);
+  upload_owners();
+  if (nd > 0) {
+    r.pose.args(r.ns, nd, r.poses, r.pbody, r.rx, r.ry, r.rz, r.rnx, r.rny, r.rnz, r.mx, r.my, r.mz, r.mvx, r.mvy,
+                r.mvz, r.mnx, r.mny, r.mnz);
+    ctx.launch(r.pose, nd);
+  }
+  boundary_keys.args(P, total, r.mx, r.my, r.mz, r.keys, r.order);
+  ctx.launch(boundary_keys, total);
+  sort->sort(r.keys, r.order, r.keys_tmp, r.order_tmp, total, ncells);
+  r.gather.args(total, r.order, r.mx, r.my, r.mz, r.mvx, r.mvy, r.mvz, r.mnx, r.mny, r.mnz, r.mflat, r.mpsi, r.mowner,
+                bx, by, bz, bvx, bvy, bvz, bnx, bny, bnz, bflat, bpsi, bsolid, r.rank);
+  ctx.launch(r.gather, total);
+  cell_starts.args(total, ncells, r.keys, bstart);
+  ctx.launch(cell_starts, std::size_t(total) + 1);
+
+  // Psi_b of the owners whose particles are new, read back so that a later change of
+  // the layout keeps it.
+  std::vector<std::uint32_t> dirty(r.body_owner0 + r.bodies.size(), 0);
+  bool any = false;
+  if (r.static_psi_dirty)
+    for (std::uint32_t o = 0; o < r.body_owner0; ++o) dirty[o] = 1, any = true;
+  for (std::size_t k = 0; k < r.bodies.size(); ++k)
+    if (r.bodies[k].psi_dirty && r.bodies[k].info.active && !r.bodies[k].reference.empty())
+      dirty[r.body_owner0 + k] = 1, any = true;
+  if (any) {
+    ctx.write_vector(r.dirty, dirty);
+    r.psi.args(P, total, bstart, bx, by, bz, bsolid, r.order, static_cast<std::uint32_t>(dirty.size()), r.dirty, bpsi,
+               r.mpsi);
+    ctx.launch(r.psi, total);
+    if (r.static_psi_dirty) r.spsi = ctx.read_vector<float>(r.mpsi, r.ns);
+    r.static_psi_dirty = false;
+    for (BodyEntry& e : r.bodies) {
+      if (!e.psi_dirty || !e.info.active) continue;
+      e.psi = ctx.read_vector<float>(r.mpsi, e.reference.size(), e.first);
+      e.psi_dirty = false;
+    }
+  }
+  boundary_dirty = false;
+  grid_valid = false;
+  // New bodies or particles: their contact weights before their first step.
+  if (r.weights_unknown) {
+    r.weights_unknown = false;
+    rigid_forces(-1.0);
+    upload_owners();
+  }
+}
+
+double Solver::Impl::body_speed_max() const {
+  double v = 0;
+  for (const BodyEntry& e : rigid->bodies) {
+    if (!e.info.active || e.info.fixed) continue;
+    const rigid::BodyState& st = e.body.state();
+    v = std::max(v, st.linear_velocity.norm() + st.angular_velocity.norm() * e.radius);
+  }
+  return v;
+}
+
+// dt < 0: only count the contact weights (boundary_forces' count mode).
+void Solver::Impl::rigid_forces(double dt) {
+  RigidStage& r = *rigid;
+  const std::uint32_t first = r.measure_static ? 0 : r.ns;
+  const std::uint32_t count = r.nb - first;
+  if (dt >= 0)
+    for (BodyEntry& e : r.bodies) e.force = e.torque = Vec3d::Zero();
+  if (count == 0 || r.block_table.empty()) {
+    r.touching_now = false;
+    return;
+  }
+  ContactParams C{};
+  C.omega = static_cast<float>(params.contact_frequency);
+  C.reach = kContactReach;
+  C.margin = static_cast<float>(kTouchMargin * params.spacing);
+  C.body_owner0 = r.body_owner0;
+  const int f = front;
+  r.forces.args(P, C, first, count, static_cast<float>(dt), start, x[f], y[f], z[f], vx[f], vy[f], vz[f], ax, ay, az,
+                rho, pterm, phi, hold[f], bstart, bx, by, bz, bvx, bvy, bvz, bnx, bny, bnz, bflat, bpsi, bsolid,
+                r.rank, r.owners, r.fx, r.fy, r.fz, r.tx, r.ty, r.tz, r.touching);
+  ctx.launch(r.forces, count);
+  sum_blocks(dt);
+}
+
+// The per-body sums: blocks on the device, added on the host in their fixed order,
+// in double.
+void Solver::Impl::sum_blocks(double dt) {
+  RigidStage& r = *rigid;
+  const std::uint32_t nblocks = static_cast<std::uint32_t>(r.block_table.size());
+  r.reduce.args(nblocks, r.blocks, r.poses, r.mx, r.my, r.mz, r.fx, r.fy, r.fz, r.tx, r.ty, r.tz, r.touching,
+                r.block_sums);
+  ctx.launch(r.reduce, nblocks);
+  const std::vector<BodyReduce> sums = ctx.read_vector<BodyReduce>(r.block_sums, nblocks);
+  double pairs = 0;
+  Vec3d static_force = Vec3d::Zero();
+  for (BodyEntry& e : r.bodies) e.contact_weight = 0;
+  for (std::size_t b = 0; b < nblocks; ++b) {
+    const BodyReduce& s = sums[b];
+    const Vec3d force(s.fx, s.fy, s.fz), torque(s.tx, s.ty, s.tz);
+    pairs += s.touching;
+    const std::uint32_t body = r.block_table[b].body;
+    if (body == BW_NO_BODY) {
+      static_force += force;
+      continue;
+    }
+    BodyEntry& e = r.bodies[body];
+    e.contact_weight += s.touching;
+    if (dt >= 0) {
+      e.force += force;
+      e.torque += torque;
+    }
+  }
+  r.touching_now = pairs > 0;
+  if (dt > 0) r.static_impulse += dt * static_force;
+}
+
+void Solver::Impl::step_bodies(double dt) {
+  RigidStage& r = *rigid;
+  bool moved = false;
+  for (BodyEntry& e : r.bodies) {
+    if (!e.info.active || e.info.fixed) continue;
+    e.force += e.body.mass().mass * params.gravity;
+    e.body.step(e.force, e.torque, dt);
+    const rigid::BodyState& st = e.body.state();
+    if (!finite(st.position) || !finite(st.linear_velocity) || !finite(st.angular_velocity))
+      blow_up(fmt::format("body '{}' has a non-finite state (force ({:.4g}, {:.4g}, {:.4g}) N)", e.info.name,
+                          e.force.x(), e.force.y(), e.force.z()));
+    moved = true;
+  }
+  if (moved) boundary_dirty = true;
+}
+
+void Solver::Impl::body_energies(double& kinetic, double& potential) const {
+  kinetic = potential = 0;
+  if (!rigid) return;
+  for (const BodyEntry& e : rigid->bodies) {
+    if (!e.info.active) continue;
+    kinetic += e.body.kinetic_energy();
+    potential -= e.body.mass().mass * params.gravity.dot(e.body.state().position - params.domain.min);
+  }
+}
+
+std::uint64_t Solver::Impl::rigid_bytes() const {
+  if (!rigid) return 0;
+  const RigidStage& r = *rigid;
+  std::uint64_t total = 0;
+  for (const Buffer* b : {&r.mx, &r.my, &r.mz, &r.mvx, &r.mvy, &r.mvz, &r.mnx, &r.mny, &r.mnz, &r.mflat, &r.mpsi, &r.mowner,
+                          &r.rx, &r.ry, &r.rz, &r.rnx, &r.rny, &r.rnz, &r.pbody, &r.keys, &r.order, &r.keys_tmp,
+                          &r.order_tmp, &r.rank, &r.fx, &r.fy, &r.fz, &r.tx, &r.ty, &r.tz, &r.touching, &r.poses,
+                          &r.owners, &r.blocks, &r.block_sums, &r.dirty})
+    total += b->bytes();
+  return total;
+}
+
+// ---- the public interface
+
+int Solver::add_body(const BodySpec& spec) { return impl_->add_body(spec); }
+
+void Solver::replace_body_particles(int body, const std::vector<Vec3d>& particles, const std::vector<Vec3d>& normals,
+                                    const std::vector<double>& flatness) {
+  impl_->replace_body_particles(body, particles, normals, flatness);
+}
+
+void Solver::set_body_fixed(int body, bool fixed) {
+  BodyEntry& e = impl_->body_entry(body);
+  if (e.info.fixed == fixed) return;
+  e.info.fixed = fixed;
+  if (fixed) {
+    e.body.state().linear_velocity = Vec3d::Zero();
+    e.body.state().angular_velocity = Vec3d::Zero();
+  }
+  impl_->rigid->layout_dirty = true;
+  impl_->boundary_dirty = true;
+}
+
+void Solver::retire_body(int body) {
+  BodyEntry& e = impl_->body_entry(body);
+  e.info.active = false;
+  e.info.particles = 0;
+  e.reference.clear();
+  e.reference_normals.clear();
+  e.flatness.clear();
+  e.psi.clear();
+  impl_->rigid->layout_dirty = true;
+  impl_->boundary_dirty = true;
+}
+
+int Solver::body_count() const { return impl_->rigid ? static_cast<int>(impl_->rigid->bodies.size()) : 0; }
+const BodyInfo& Solver::body_info(int body) const { return impl_->body_entry(body).info; }
+const rigid::Body& Solver::body(int body) const { return impl_->body_entry(body).body; }
+
+rigid::BodyState& Solver::body_state(int body) {
+  impl_->boundary_dirty = true;  // the caller may move it
+  return impl_->body_entry(body).body.state();
+}
+
+Vec3d Solver::body_force(int body) const { return impl_->body_entry(body).force; }
+Vec3d Solver::body_torque(int body) const { return impl_->body_entry(body).torque; }
+
+std::uint32_t Solver::body_first_particle(int body) const {
+  Impl& s = *impl_;
+  if (s.rigid && s.rigid->layout_dirty) s.upload_layout();
+  return s.body_entry(body).first;
+}
+
+BodyStates Solver::body_states() const {
+  BodyStates out;
+  if (!impl_->rigid) return out;
+  const auto& bodies = impl_->rigid->bodies;
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    if (!bodies[k].info.active) continue;
+    const rigid::BodyState& st = bodies[k].body.state();
+    out.id.push_back(static_cast<std::int32_t>(k));
+    out.position.push_back(st.position);
+    out.orientation.push_back(st.orientation);
+    out.linear_velocity.push_back(st.linear_velocity);
+    out.angular_velocity.push_back(st.angular_velocity);
+  }
+  return out;
+}
+
+void Solver::measure_static_reactions(bool on) {
+  Impl& s = *impl_;
+  if (on) s.enable_bodies();
+  if (!s.rigid || s.rigid->measure_static == on) return;
+  s.rigid->measure_static = on;
+  s.rigid->static_impulse = Vec3d::Zero();
+  s.rigid->layout_dirty = true;
+  s.boundary_dirty = true;
+}
+
+Vec3d Solver::static_impulse() const { return impl_->rigid ? impl_->rigid->static_impulse : Vec3d::Zero(); }
+
+}  // namespace bw::sim

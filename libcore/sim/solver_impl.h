@@ -1,0 +1,268 @@
+// The solver's state and the pieces of a step, shared by solver.cpp (the fluid) and
+// rigid_stage.cpp (rigid bodies). Internal to libcore/sim: the public interface is
+// sim/solver.h.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "compute/context.h"
+#include "compute/radix_sort.h"
+#include "sim/solver.h"
+#include "sim/setup.h"
+#include "sph_common.h"
+
+namespace bw::sim {
+
+
+using compute::Buffer;
+using compute::Kernel;
+
+// Elements past the end of every array the neighbour loops read: they load up to
+// 16 (float16, the widest BW_VW) candidates at once.
+inline constexpr std::size_t kPad = 16;
+// Particles per block of the reduction kernels: long enough for a serial loop to pay,
+// short enough that float partial sums stay accurate.
+inline constexpr std::uint32_t kReduceChunk = 512;
+// Blocks per compute unit for the reductions.
+inline constexpr std::uint32_t kReduceBlocksPerUnit = 64;
+// Largest grid (cells): the cell index is a 32-bit key and start[] has one entry each.
+inline constexpr std::uint64_t kMaxCells = std::uint64_t{1} << 30;
+// Wall contact (fluid_integrate): a fluid particle closer than kContactDistance
+// spacings to a solid's surface, over the patch of radius kPatchRadius spacings a
+// boundary particle stands for, cannot move further into the surface. Fluid at rest
+// is one spacing from the surface's particles; a CFL step moves a particle at most
+// 0.4 spacings at speeds up to c0, less than 0.6; patches of 0.75 spacings around
+// particles one spacing apart cover a flat surface without gaps (0.71 would do).
+inline constexpr double kContactDistance = 0.6;
+inline constexpr double kPatchRadius = 0.75;
+// A step shorter than this fraction of the proposed dt before a frame time would be
+// a sliver: the last two steps share the remaining time instead.
+inline constexpr double kSplitBeforeFrame = 2.0;
+
+inline std::uint32_t u32(std::int64_t v) { return static_cast<std::uint32_t>(v); }
+
+// A rigid body as the solver holds it.
+struct BodyEntry {
+  BodyInfo info;
+  rigid::Body body;
+  std::vector<Vec3d> reference;          // boundary particles minus mass.center, reference configuration
+  std::vector<Vec3d> reference_normals;
+  std::vector<float> flatness;           // of the surface at each particle (1 on faces)
+  std::vector<float> psi;                // Psi_b of its particles, master order (valid unless psi_dirty)
+  bool psi_dirty = true;
+  double spacing = 0, friction = 0.5, restitution = 0.3;
+  double radius = 0;                     // farthest particle from the centre of mass (m)
+  std::uint32_t first = 0;               // master index of its first particle
+  double contact_weight = 0;             // weight of its contact pairs at the last step
+  Vec3d force = Vec3d::Zero(), torque = Vec3d::Zero();  // of the last step, gravity included
+};
+
+// The device side of the rigid bodies (rigid_stage.cpp, shaders/rigid.cl).
+struct RigidStage {
+  compute::Program program;
+  Kernel pose, gather, psi, forces, reduce;
+  std::vector<BodyEntry> bodies;
+  std::uint32_t body_owner0 = 0;         // owner of body 0: the number of scene solids
+  std::vector<SolidMaterial> materials;  // of the scene solids
+  // Static particles (master indices 0 .. ns - 1), kept on the host for reallocations.
+  std::uint32_t ns = 0;
+  std::vector<float> sx, sy, sz, snx, sny, snz, sflat, spsi;
+  std::vector<std::uint32_t> sowner;
+  bool static_psi_dirty = true;
+  std::uint32_t nb = 0, capacity = 0;    // boundary particles in use, allocated
+  // master order (capacity)
+  Buffer mx, my, mz, mvx, mvy, mvz, mnx, mny, mnz, mflat, mpsi, mowner;
+  // bodies' particles (capacity, index = master index - ns): reference arrays, body
+  Buffer rx, ry, rz, rnx, rny, rnz, pbody;
+  // the boundary sort: keys, order (sorted -> master), scratch, rank (master -> sorted)
+  Buffer keys, order, keys_tmp, order_tmp, rank;
+  // per particle, master order: force, own torque, contact pairs
+  Buffer fx, fy, fz, tx, ty, tz, touching;
+  // tables: poses (per body), owners, blocks, block sums, Psi_b requests (per owner)
+  Buffer poses, owners, blocks, block_sums, dirty;
+  std::vector<BodyBlock> block_table;
+  bool layout_dirty = true;              // bodies or their particles changed
+  bool weights_unknown = true;           // count contacts before the next step (new layout)
+  bool touching_now = true;              // contact pairs at the last step (the contact time step)
+  bool measure_static = false;
+  Vec3d static_impulse = Vec3d::Zero();  // N s
+};
+
+struct Solver::Impl {
+  compute::Context& ctx;
+  Parameters params;
+  SimParams P{};
+  std::uint32_t ncells = 0;
+  std::uint32_t capacity = 0;
+
+  compute::Program grid_program, fluid_program;
+  Kernel fluid_keys, boundary_keys, cell_starts, reorder, gather_float, gather_uint, neighbour_lists;
+  Kernel psi, density, forces, integrate, step_reduce, frame_reduce, emit;
+  std::unique_ptr<compute::RadixSort> sort;
+
+  // fluid
+  std::array<Buffer, 2> x, y, z, vx, vy, vz, id, hold;
+  int front = 0;
+  Buffer keys, values, keys_tmp, values_tmp;
+  Buffer rho, pres, pterm, vol, phi, ax, ay, az, start;
+  // boundary
+  Buffer bx, by, bz, bpsi, bvx, bvy, bvz, bnx, bny, bnz, bsolid, bstart;
+  std::uint32_t nb = 0;
+  ParticleArrays boundary_host;
+  // reductions
+  Buffer step_out, frame_out;
+  // emitters
+  std::vector<EmitterLattice> emitters;
+  std::vector<std::uint32_t> emitter_first_point;
+  std::vector<std::int64_t> emitter_layers;
+  Buffer ex, ey, ez, emitter_table;
+  bool capped = false;
+
+  // state
+  double t = 0;
+  std::int64_t steps = 0;
+  std::uint32_t n = 0;          // particles in the arrays (live, plus any to be removed)
+  std::int64_t removed = 0;
+  std::uint32_t next_id = 0;
+  bool grid_valid = false;
+
+  // rigid bodies: null until the scene has one (or static reactions are measured)
+  std::unique_ptr<RigidStage> rigid;
+  BoundarySet static_boundary;  // the static solids' particles as set up (unsorted)
+  Buffer bflat;                 // sorted flatness of the boundary particles (with bodies only)
+  std::vector<SolidMaterial> materials;
+  bool boundary_dirty = false;  // bodies moved: sort the boundary again before the density
+
+  explicit Impl(compute::Context& c) : ctx(c) {}
+
+  // rigid_stage.cpp
+  void enable_bodies();
+  int add_body(const BodySpec& spec);
+  void replace_body_particles(int body, const std::vector<Vec3d>& particles, const std::vector<Vec3d>& normals,
+                              const std::vector<double>& flatness);
+  void upload_layout();
+  void update_boundary();
+  double body_speed_max() const;
+  void rigid_forces(double dt);
+  void sum_blocks(double dt);
+  void upload_owners();
+  void step_bodies(double dt);
+  void body_energies(double& kinetic, double& potential) const;
+  BodyEntry& body_entry(int body);
+  const BodyEntry& body_entry(int body) const;
+  std::uint64_t rigid_bytes() const;
+
+  int back() const { return 1 - front; }
+
+  std::uint32_t reduce_blocks(std::uint32_t count, std::uint32_t& chunk) const {
+    const std::uint32_t units = static_cast<std::uint32_t>(std::max(1, ctx.device().compute_units));
+    std::uint32_t blocks = std::max<std::uint32_t>(1, (count + kReduceChunk - 1) / kReduceChunk);
+    blocks = std::min(blocks, units * kReduceBlocksPerUnit);
+    chunk = std::max<std::uint32_t>(1, (count + blocks - 1) / blocks);
+    return (count + chunk - 1) / chunk;
+  }
+
+  Buffer floats(std::size_t count, const std::string& name) { return ctx.buffer((count + kPad) * sizeof(float), name); }
+  Buffer uints(std::size_t count, const std::string& name) {
+    return ctx.buffer((count + kPad) * sizeof(std::uint32_t), name);
+  }
+
+  // Sorts the fluid by cell, finds the cell starts and computes density and pressure
+  // for the current positions (once per state).
+  void ensure_grid() {
+    if (boundary_dirty) update_boundary();
+    if (grid_valid) return;
+    const int f = front, b = back();
+    if (n > 0) {
+      fluid_keys.args(P, n, x[f], y[f], z[f], keys, values);
+      ctx.launch(fluid_keys, n);
+      sort->sort(keys, values, keys_tmp, values_tmp, n, ncells);
+      reorder.args(n, values, x[f], y[f], z[f], vx[f], vy[f], vz[f], id[f], hold[f], x[b], y[b], z[b], vx[b], vy[b],
+                   vz[b], id[b], hold[b]);
+      ctx.launch(reorder, n);
+      front = b;
+    }
+    cell_starts.args(n, ncells, keys, start);
+    ctx.launch(cell_starts, std::size_t(n) + 1);
+    density.args(P, start, x[front], y[front], z[front], bstart, bx, by, bz, bpsi, rho, pres, pterm, vol, phi);
+    ctx.launch(density, n);
+    grid_valid = true;
+  }
+
+  std::uint32_t read_live() {
+    std::uint32_t live = 0;
+    ctx.read(start, &live, sizeof(live), std::size_t(ncells) * sizeof(std::uint32_t));
+    return live;
+  }
+
+  // After a sort: drop the particles that left the domain from the count.
+  void settle_count() {
+    const std::uint32_t live = read_live();
+    removed += n - live;
+    n = live;
+  }
+
+  float read_float(const Buffer& buffer, std::uint32_t i) {
+    float v = 0;
+    ctx.read(buffer, &v, sizeof(v), std::size_t(i) * sizeof(float));
+    return v;
+  }
+
+  std::string describe_particle(std::uint32_t i) {
+    const int f = front;
+    std::uint32_t pid = 0;
+    ctx.read(id[f], &pid, sizeof(pid), std::size_t(i) * sizeof(std::uint32_t));
+    const float px = read_float(x[f], i), py = read_float(y[f], i), pz = read_float(z[f], i);
+    const float ux = read_float(vx[f], i), uy = read_float(vy[f], i), uz = read_float(vz[f], i);
+    return fmt::format("particle {} at ({:.4g}, {:.4g}, {:.4g}) m with velocity ({:.4g}, {:.4g}, {:.4g}) m/s", pid, px,
+                       py, pz, ux, uy, uz);
+  }
+
+  [[noreturn]] void blow_up(const std::string& what) const {
+    fail_run("step {} (t = {:.6f} s): {}; the fluid blew up (lower time.dt_max or time.cfl, or raise fluid.mu)",
+             steps + 1, t, what);
+  }
+
+  std::int64_t emit_after_step() {
+    std::int64_t emitted = 0;
+    for (std::size_t e = 0; e < emitters.size(); ++e) {
+      const EmitterLattice& em = emitters[e];
+      const std::int64_t target = em.layers_by(t, params.spacing);
+      const double travelled = em.distance_by(t);
+      const std::uint32_t per_layer = static_cast<std::uint32_t>(em.points.size());
+      for (std::int64_t layer = emitter_layers[e]; layer < target; ++layer) {
+        const std::int64_t room = std::int64_t(capacity) - std::int64_t(n);
+        const std::uint32_t count = static_cast<std::uint32_t>(std::clamp<std::int64_t>(room, 0, per_layer));
+        if (count < per_layer) capped = true;
+        if (count > 0) {
+          // Layer k crossed the emitter when the fluid had moved (k + 1) spacings.
+          const double offset = travelled - static_cast<double>(layer + 1) * params.spacing;
+          const Vec3d o = em.normal * offset;
+          const Vec3d v = em.normal * em.speed;
+          const int f = front;
+          emit.args(count, n, next_id, emitter_first_point[e], static_cast<std::uint32_t>(e), ex, ey, ez,
+                    static_cast<float>(o.x()), static_cast<float>(o.y()), static_cast<float>(o.z()),
+                    static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z()), x[f], y[f], z[f],
+                    vx[f], vy[f], vz[f], id[f], hold[f]);
+          ctx.launch(emit, count);
+          n += count;
+          next_id += count;
+          emitted += count;
+        }
+      }
+      emitter_layers[e] = target;
+    }
+    if (emitted) grid_valid = false;
+    return emitted;
+  }
+};
+
+}  // namespace bw::sim
