@@ -60,10 +60,11 @@ int main(int argc, char** argv) {
     // A tank for dam breaks and floating bodies: cavity 0.6 x 0.15 x 0.4 m, walls 3 cm.
     mesh::export_mesh(mesh::open_box({0, 0, 0}, {0.6, 0.15, 0.4}, 0.03), dir + "/tank.obj");
     // Validation (docs/validation.md): a channel for Martin & Moyce's dam break,
-    // cavity 1 x 0.1 x 0.3 m, and a column for hydrostatics, cavity 0.1 x 0.1 x 0.3 m,
+    // cavity 1 x 0.1 x 0.6 m (high enough that the surge running up its end wall stays
+    // in), and a column for hydrostatics, cavity 0.1 x 0.1 x 0.3 m,
     // walls 4 cm: every face lies on a cell plane of bw-sample's grid at spacings
     // 0.02, 0.01, 0.005 and 0.0025, so the fluid fills the cavity at each of them.
-    mesh::export_mesh(mesh::open_box({0, 0, 0}, {1.0, 0.1, 0.3}, 0.04), dir + "/channel.obj");
+    mesh::export_mesh(mesh::open_box({0, 0, 0}, {1.0, 0.1, 0.6}, 0.04), dir + "/channel.obj");
     mesh::export_mesh(mesh::open_box({0, 0, 0}, {0.1, 0.1, 0.3}, 0.04), dir + "/column.obj");
     // Stability cases: a sealed tank, cavity 0.6 x 0.1 x 1 m, for jets and drops whose
     // splashes must stay in; a baffle across it, 4 cm thick and 0.2 m high; a sheet of
