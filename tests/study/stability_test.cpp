@@ -1,9 +1,10 @@
 // The stability suite, reduced (tests/study/stability.cases, the "reduced" columns):
 // every case that is not pending runs through bw-sim at a coarse spacing and must
-// pass the checks of study_checks.h (stable), or be refused with the message its
-// line names. The full cases are `make -f Makefile.scenes stability`.
+// pass the checks of study_checks.h (stable; leaks: all but keeping its particles
+// in, a known failure), or be refused with the message its line names. The full cases are `make -f Makefile.scenes stability`.
 #include <cctype>
 #include <fstream>
+#include <ostream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -51,6 +52,9 @@ std::vector<Case> read_cases() {
   return cases;
 }
 
+// Test names and failure messages show the case's name, not its bytes.
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+
 class Stability : public testing::TestWithParam<Case> {};
 
 TEST_P(Stability, Case) {
@@ -74,7 +78,7 @@ TEST_P(Stability, Case) {
     EXPECT_FALSE(test::exists(dir.file("run/run.h5"))) << "a refused scene writes nothing";
     return;
   }
-  ASSERT_EQ(c.expect, "stable") << "unknown expectation";
+  ASSERT_TRUE(c.expect == "stable" || c.expect == "leaks") << "unknown expectation " << c.expect;
   EXPECT_EQ(r.exit_code, 0) << r.err;
   const study::StabilityReport report = study::check_stability(dir.file("run"), {});
   test::figure(c.name + ": steps", report.run.steps);
@@ -82,7 +86,13 @@ TEST_P(Stability, Case) {
   test::figure(c.name + ": worst density error", report.run.density_error_worst);
   test::figure(c.name + ": energy drift (of the initial total)", report.run.energy_drift);
   test::figure(c.name + ": energy rise above the initial total", report.run.energy_growth);
+  test::figure(c.name + ": particle positions inside solids", static_cast<double>(report.inside_solids));
+  test::figure(c.name + ": particles lost", report.run.removed);
   for (const std::string& f : report.failures) ADD_FAILURE() << c.name << ": " << f;
+  // A case expected to leak (a known failure of the solver, docs/validation.md) is
+  // held to everything else.
+  if (c.expect == "stable")
+    for (const std::string& l : report.leaks) ADD_FAILURE() << c.name << ": " << l;
 }
 
 INSTANTIATE_TEST_SUITE_P(Suite, Stability, testing::ValuesIn(read_cases()),

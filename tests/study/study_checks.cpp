@@ -55,12 +55,59 @@ RunIndicators read_indicators(const std::string& run_dir) {
   return r;
 }
 
-analysis::DamBreakComparison dambreak_error(const std::string& run_dir, const analysis::DamBreakSetup& setup,
-                                            const std::string& reference_csv) {
+DamBreakError dambreak_error(const std::string& run_dir, const analysis::DamBreakSetup& setup,
+                             const std::string& reference_csv) {
   std::vector<analysis::DamBreakSample> samples;
   for (const std::string& frame : analysis::list_frames(run_dir + "/frames"))
     samples.push_back(analysis::measure_dambreak(read_frame(frame), setup));
-  return analysis::compare_dambreak(samples, setup, analysis::read_dambreak_reference(reference_csv));
+  const analysis::DamBreakReference reference = analysis::read_dambreak_reference(reference_csv);
+  DamBreakError e;
+  e.comparison = analysis::compare_dambreak(samples, setup, reference);
+  // Shifts of the time origin over +-kShiftRange in steps of kShiftStep (in T): the
+  // experiment's points stay within the run as long as the run goes on past the last
+  // one by kShiftRange.
+  constexpr double kShiftRange = 1.0, kShiftStep = 0.01;
+  const double t_of_T = 1 / std::sqrt(2 * setup.gravity / setup.column_width);
+  e.front_rms_shifted = e.comparison.front.rms;
+  for (double dT = -kShiftRange; dT <= kShiftRange + 1e-9; dT += kShiftStep) {
+    std::vector<analysis::DamBreakSample> shifted = samples;
+    for (analysis::DamBreakSample& s : shifted) s.time += dT * t_of_T;
+    // Delayed, the column stands as it starts until the release.
+    if (dT > 0 && !samples.empty()) shifted.insert(shifted.begin(), samples.front());
+    const analysis::SeriesError f = analysis::compare_dambreak(shifted, setup, reference).front;
+    if (f.skipped == 0 && f.rms < e.front_rms_shifted) {
+      e.front_rms_shifted = f.rms;
+      e.front_shift = dT;
+    }
+  }
+  return e;
+}
+
+double front_difference(const std::string& run_dir, const analysis::DamBreakSetup& setup, const std::string& other_dir,
+                        const analysis::DamBreakSetup& other_setup, const std::string& reference_csv) {
+  // The other run's front series stands in for the experiment's: compare_dambreak
+  // interpolates this run's front at its times.
+  analysis::DamBreakReference reference = analysis::read_dambreak_reference(reference_csv);
+  std::vector<analysis::DamBreakSample> other;
+  for (const std::string& frame : analysis::list_frames(other_dir + "/frames"))
+    other.push_back(analysis::measure_dambreak(read_frame(frame), other_setup));
+  const double T_of_t = std::sqrt(2 * other_setup.gravity / other_setup.column_width);
+  auto other_front = [&](double T) {
+    for (std::size_t i = 0; i + 1 < other.size(); ++i) {
+      const double t0 = other[i].time * T_of_t, t1 = other[i + 1].time * T_of_t;
+      if (T >= t0 && T <= t1)
+        return (other[i].front + (other[i + 1].front - other[i].front) * (T - t0) / (t1 - t0)) / other_setup.column_width;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+  for (analysis::ReferencePoint& p : reference.front) {
+    p.value = other_front(p.T);
+    if (!std::isfinite(p.value)) fail_input("{}: its frames do not reach T = {} of the experiment", other_dir, p.T);
+  }
+  std::vector<analysis::DamBreakSample> samples;
+  for (const std::string& frame : analysis::list_frames(run_dir + "/frames"))
+    samples.push_back(analysis::measure_dambreak(read_frame(frame), setup));
+  return analysis::compare_dambreak(samples, setup, reference).front.rms;
 }
 
 HydrostaticError hydrostatic_error(const std::string& run_dir, const Vec3d& point, double surface, double radius,
@@ -147,10 +194,11 @@ StabilityReport check_stability(const std::string& run_dir, const StabilityLimit
   const RunIndicators& r = report.run;
   if (!r.complete()) f.push_back("did not finish: " + r.status);
   if (report.nonfinite > 0) f.push_back(fmt::format("{} non-finite positions", report.nonfinite));
-  if (r.removed > 0) f.push_back(fmt::format("{} particles left the domain", r.removed));
-  if (report.outside_domain > 0) f.push_back(fmt::format("{} particle positions outside the domain", report.outside_domain));
+  auto& l = report.leaks;
+  if (r.removed > 0) l.push_back(fmt::format("{} particles left the domain", r.removed));
+  if (report.outside_domain > 0) l.push_back(fmt::format("{} particle positions outside the domain", report.outside_domain));
   if (report.inside_solids > 0)
-    f.push_back(fmt::format("{} particle positions inside solids (first in frame {})", report.inside_solids,
+    l.push_back(fmt::format("{} particle positions inside solids (first in frame {})", report.inside_solids,
                             report.first_bad_frame));
   if (!(r.density_error_worst <= limits.density_error))
     f.push_back(fmt::format("worst density error {:.4f} above {}", r.density_error_worst, limits.density_error));

@@ -31,9 +31,25 @@ struct RunIndicators {
 };
 RunIndicators read_indicators(const std::string& run_dir);
 
-// Front and residual of the run's frames against the experiment (analysis/dambreak.h).
-analysis::DamBreakComparison dambreak_error(const std::string& run_dir, const analysis::DamBreakSetup& setup,
-                                            const std::string& reference_csv);
+// Front and residual of the run's frames against the experiment (analysis/dambreak.h),
+// and how much of the front's error a shift of the time origin explains: the delay
+// dT (in the experiment's T = t sqrt(2 g / a); positive: the experiment lags the run)
+// for which the front's RMS is least, and that RMS. Martin & Moyce released their
+// column by pulling a diaphragm away, which takes time that their origin of time
+// does not account for.
+struct DamBreakError {
+  analysis::DamBreakComparison comparison;
+  double front_shift = 0;        // dT
+  double front_rms_shifted = 0;  // front RMS with the run's T + dT against the experiment
+};
+DamBreakError dambreak_error(const std::string& run_dir, const analysis::DamBreakSetup& setup,
+                             const std::string& reference_csv);
+
+// RMS difference of two runs' fronts (Z = x / a, each measured with its own setup)
+// at the experiment's times: a run's discretisation error when `other` is the same
+// scene at a finer spacing (the study compares every run with its finest).
+double front_difference(const std::string& run_dir, const analysis::DamBreakSetup& setup, const std::string& other_dir,
+                        const analysis::DamBreakSetup& other_setup, const std::string& reference_csv);
 
 struct HydrostaticError {
   double pressure = 0;     // Pa: the probe's pressure, averaged over the frames at or after `from`
@@ -70,8 +86,11 @@ struct StabilityReport {
   long outside_domain = 0;   // particles outside the domain box, over all frames
   long inside_solids = 0;    // particles inside a solid's mesh, over all frames
   int first_bad_frame = -1;  // first frame with any of the three
-  std::vector<std::string> failures;  // one line per broken check; empty: stable
-  bool stable() const { return failures.empty(); }
+  // One line per broken check: `leaks` for particles that left the domain or entered a
+  // solid, `failures` for the others (did not finish, non-finite values, density
+  // error, energy rise).
+  std::vector<std::string> leaks, failures;
+  bool stable() const { return failures.empty() && leaks.empty(); }
 };
 // Reads every frame and the scene the run file records (its solids' meshes, placed as
 // the scene places them, and its domain) and checks them against `limits`.
