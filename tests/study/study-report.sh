@@ -5,12 +5,14 @@
 # time, and print the table for docs/validation.md.
 #
 #   study-report.sh frontier ERRCOL < runs.csv > study.csv
-#       appends `error` (|ERRCOL|) and `frontier`: 1 for the runs no other run beats on
-#       both wall time and error (a run that stopped is never on it)
-#   study-report.sh plot study.csv TITLE YLABEL OUT.png
-#       log-log error against wall time, one curve per setting through its spacings
+#       appends `frontier_ERRCOL`: 1 for the runs that no other run beats on both
+#       wall time and |ERRCOL| (a run that stopped, or whose ERRCOL is nan, is never
+#       on it); pipe through it once per error column
+#   study-report.sh plot study.csv ERRCOL TITLE YLABEL OUT.png
+#       log-log |ERRCOL| against wall time, one curve per setting through its
+#       spacings (labelled), and the frontier
 #   study-report.sh table study.csv
-#       a Markdown table, one row per run, frontier runs in bold
+#       a Markdown table, one row per run, the errors of frontier runs in bold
 #   study-report.sh stability stability.csv
 #       the stability suite's Markdown table, one row per case
 set -euo pipefail
@@ -28,37 +30,39 @@ case "$mode" in
       NR == 1 {
         for (i = 1; i <= NF; ++i) { if ($i == errname) e = i; if ($i == "wall_time") w = i; if ($i == "status") s = i }
         if (!e || !w || !s) { print "study-report: no column " errname ", wall_time or status" > "/dev/stderr"; exit 2 }
-        print $0, "error", "frontier"; next
+        print $0, "frontier_" errname; next
       }
       {
         row[NR] = $0; time[NR] = $w + 0; err[NR] = ($e < 0 ? -$e : $e) + 0
-        ok[NR] = ($s == "complete" && $e != "" && $e !~ /nan/)
+        ok[NR] = ($s == "complete" && $e != "" && tolower($e) !~ /nan/)
       }
       END {
         for (i = 2; i <= NR; ++i) {
           on = ok[i]
           for (j = 2; j <= NR && on; ++j)
             if (j != i && ok[j] && time[j] <= time[i] && err[j] <= err[i] && (time[j] < time[i] || err[j] < err[i])) on = 0
-          print row[i], (ok[i] ? sprintf("%.6g", err[i]) : "nan"), on
+          print row[i], on
         }
       }'
     ;;
   plot)
-    [[ $# -eq 5 ]] || die "usage: study-report.sh plot study.csv TITLE YLABEL OUT.png"
-    csv=$2 title=$3 ylabel=$4 png=$5
+    [[ $# -eq 6 ]] || die "usage: study-report.sh plot study.csv ERRCOL TITLE YLABEL OUT.png"
+    csv=$2 errcol=$3 title=$4 ylabel=$5 png=$6
     setting=$(column "$csv" setting) spacing=$(column "$csv" spacing) wall=$(column "$csv" wall_time)
-    error=$(column "$csv" error) frontier=$(column "$csv" frontier)
+    error=$(column "$csv" "$errcol") frontier=$(column "$csv" "frontier_$errcol")
+    [[ -n $error && -n $frontier ]] || die "$csv: no column $errcol or frontier_$errcol"
     data=$(mktemp)
     trap 'rm -f "$data"' EXIT
     # One gnuplot data block per setting (two blank lines between), coarse to fine.
     settings=$(tail -n +2 "$csv" | cut -d, -f"$setting" | awk '!seen[$0]++')
     for s in $settings; do
-      tail -n +2 "$csv" | awk -F, -v OFS=' ' -v s="$s" -v c="$setting" -v sp="$spacing" -v w="$wall" -v e="$error" \
-        -v f="$frontier" '$c == s && $e != "nan" { print $w, $e, $sp, $f }' | sort -k3,3gr
+      tail -n +2 "$csv" | awk -F, -v s="$s" -v c="$setting" -v sp="$spacing" -v w="$wall" -v e="$error" \
+        '$c == s && tolower($e) !~ /nan/ { print $w, ($e < 0 ? -$e : $e), $sp }' | sort -k3,3gr
       printf '\n\n'
     done > "$data"
     # The frontier: its runs by increasing wall time.
-    tail -n +2 "$csv" | awk -F, -v w="$wall" -v e="$error" -v f="$frontier" '$f == 1 { print $w, $e }' | sort -g >> "$data"
+    tail -n +2 "$csv" | awk -F, -v w="$wall" -v e="$error" -v f="$frontier" \
+      '$f == 1 { print $w, ($e < 0 ? -$e : $e) }' | sort -g >> "$data"
     titles=$(echo $settings)
     count=$(echo "$settings" | wc -w)
     gnuplot <<EOF
@@ -70,7 +74,7 @@ set xlabel "wall time (s, 2 cores, PoCL)"
 set ylabel "$ylabel"
 set grid
 set key outside right top
-set label 1 "labels: spacing (m)" at graph 0.01, graph 0.04 font ",9"
+set label 1 "point labels: spacing (m)" at graph 0.01, graph 0.04 font ",9"
 plot for [i=0:$((count - 1))] "$data" index i using 1:2 with linespoints pt 7 ps 1.2 title word("$titles", i + 1), \
      for [i=0:$((count - 1))] "$data" index i using 1:2:(sprintf("%g", \$3)) with labels offset 0,0.8 font ",8" notitle, \
      "$data" index $count using 1:2 with lines lw 3 lc rgb "#80000000" dt 2 title "efficient frontier"
@@ -79,20 +83,25 @@ EOF
   table)
     [[ $# -eq 2 ]] || die "usage: study-report.sh table study.csv"
     awk -F, '
+      function bold(text, on) { return on == 1 ? "**" text "**" : text }
       NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i
-                has_front = ("front_rms" in col)
+                dam = ("front_rms" in col)
                 printf "| setting | spacing (m) | cfl | c0 (m/s) | particles | steps | wall time (s) | %s | worst density error |\n", \
-                  has_front ? "front RMS (a) | residual RMS (2a)" : "pressure (Pa) | pressure error"
-                printf "|---|---|---|---|---|---|---|%s---|\n", has_front ? "---|---|" : "---|---|"
+                  dam ? "front RMS vs experiment (a) | after its delay dT | front RMS vs finest (a) | residual RMS (2a)" \
+                      : "pressure (Pa) | pressure error"
+                printf "|---|---|---|---|---|---|---|%s---|\n", dam ? "---|---|---|---|" : "---|---|"
                 next }
       {
-        b = $col["frontier"] == 1 ? "**" : ""
-        if ($col["status"] != "complete") value = "stopped | "
-        else if (has_front) value = sprintf("%s%.3f%s | %.3f", b, $col["front_rms"], b, $col["residual_rms"])
-        else value = sprintf("%.1f | %s%+.2f%%%s", $col["pressure"], b, 100 * $col["pressure_error"], b)
-        printf "| %s%s%s | %g | %g | %.1f | %d | %d | %s%.1f%s | %s | %.2f%% |\n", b, $col["setting"], b, $col["spacing"], \
-          $col["cfl"], $col["c0"], $col["fluid"], $col["steps"], b, $col["wall_time"], b, value, \
-          100 * $col["density_error_worst"]
+        if ($col["status"] != "complete") value = dam ? "stopped | | | " : "stopped | "
+        else if (dam) value = sprintf("%s | %.3f (dT %.2f) | %s | %.3f", \
+            bold(sprintf("%.3f", $col["front_rms"]), $col["frontier_front_rms"]), $col["front_rms_shifted"], \
+            $col["front_shift"], \
+            tolower($col["front_vs_finest"]) ~ /nan/ ? "(the finest)" : \
+              bold(sprintf("%.3f", $col["front_vs_finest"]), $col["frontier_front_vs_finest"]), $col["residual_rms"])
+        else value = sprintf("%.1f | %s", $col["pressure"], \
+            bold(sprintf("%+.2f%%", 100 * $col["pressure_error"]), $col["frontier_pressure_error"]))
+        printf "| %s | %g | %g | %.1f | %d | %d | %.1f | %s | %.2f%% |\n", $col["setting"], $col["spacing"], \
+          $col["cfl"], $col["c0"], $col["fluid"], $col["steps"], $col["wall_time"], value, 100 * $col["density_error_worst"]
       }' "$2"
     ;;
   stability)
