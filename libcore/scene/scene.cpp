@@ -29,6 +29,10 @@ constexpr std::int64_t kMaxParticles = 1'000'000'000;   // ids are 32-bit on the
 constexpr double kMaxFrames = 1e6;
 constexpr double kMinSupportRatio = 1.0;  // h / spacing
 constexpr double kMaxSupportRatio = 4.0;
+// Most fragments a scene may hold (body indices are int32 in the run file).
+constexpr std::int64_t kMaxChunks = 1'000'000;
+// Density of a breakable solid that gives none (kg/m^3): concrete.
+constexpr double kBreakableDensity = 2400;
 
 // Edit distance, for "did you mean" hints on unknown keys.
 std::size_t edit_distance(const std::string& a, const std::string& b) {
@@ -379,20 +383,40 @@ void read_solid(Reader& r, Scene& s) {
   solid.rotation_degrees = r.vec3("rotation", solid.rotation_degrees);
   solid.scale = r.number("scale", solid.scale);
   positive(r, "scale", solid.scale);
-  if (const toml::node* n = r.node("dynamic")) {
+  auto boolean = [&](std::string_view key, bool fallback) {
+    const toml::node* n = r.node(key);
+    if (!n) return fallback;
     const auto v = n->value_exact<bool>();
-    if (!v) r.fail("dynamic", fmt::format("expected true or false, found {}", type_name(*n)));
-    solid.dynamic = *v;
+    if (!v) r.fail(key, fmt::format("expected true or false, found {}", type_name(*n)));
+    return *v;
+  };
+  solid.dynamic = boolean("dynamic", false);
+  solid.breakable = boolean("breakable", false);
+  if (solid.breakable) {
+    solid.frc = r.number("frc", solid.frc);
+    in_unit_interval(r, "frc", solid.frc);
+    solid.anchored = boolean("anchored", solid.anchored);
+    if (solid.anchored && solid.dynamic)
+      r.fail("anchored", "an anchored breakable solid stays fixed until it breaks; it cannot also be dynamic (set "
+                         "anchored = false for a breakable solid that moves)");
+  } else {
+    for (const char* key : {"frc", "anchored"})
+      if (r.has(key)) r.fail(key, "only for a breakable solid (breakable = true)");
+    solid.anchored = false;
   }
-  if (solid.dynamic) {
-    if (!r.has("density")) r.fail("density", "missing (required for a dynamic solid, kg/m^3)");
-    solid.density = r.number("density", 0);
+  if (solid.body()) {
+    if (solid.dynamic && !r.has("density")) r.fail("density", "missing (required for a dynamic solid, kg/m^3)");
+    solid.density = r.number("density", kBreakableDensity);
     positive(r, "density", solid.density);
+    if (solid.anchored) {
+      for (const char* key : {"velocity", "angular_velocity"})
+        if (r.has(key)) r.fail(key, "an anchored solid starts at rest (set anchored = false to give it a velocity)");
+    }
     solid.velocity = r.vec3("velocity", solid.velocity);
     solid.angular_velocity = r.vec3("angular_velocity", solid.angular_velocity);
   } else {
     for (const char* key : {"density", "velocity", "angular_velocity"})
-      if (r.has(key)) r.fail(key, "only for a dynamic solid (dynamic = true)");
+      if (r.has(key)) r.fail(key, "only for a dynamic or breakable solid (dynamic = true or breakable = true)");
   }
   solid.friction = r.number("friction", solid.friction);
   non_negative(r, "friction", solid.friction);
@@ -401,6 +425,21 @@ void read_solid(Reader& r, Scene& s) {
     r.fail("restitution", fmt::format("{} is outside [0, 1]", solid.restitution));
   r.finish();
   s.solids.push_back(solid);
+}
+
+void read_fracture(Reader& top, Scene& s) {
+  const toml::table* t = top.table("fracture");
+  if (!t) return;
+  Reader r(*t, "fracture", s.path);
+  FractureSettings& f = s.fracture;
+  f.window = r.number("window", f.window);
+  positive(r, "window", f.window);
+  f.energy_scale = r.number("energy_scale", f.energy_scale);
+  positive(r, "energy_scale", f.energy_scale);
+  f.max_chunks = r.integer("max_chunks", f.max_chunks);
+  if (f.max_chunks < 1) r.fail("max_chunks", fmt::format("{} must be at least 1", f.max_chunks));
+  if (f.max_chunks > kMaxChunks) r.fail("max_chunks", fmt::format("{} is more than {}", f.max_chunks, kMaxChunks));
+  r.finish();
 }
 
 void read_output(Reader& top, Scene& s) {
@@ -486,14 +525,15 @@ Scene parse_scene(std::string_view text, const std::string& path, const std::vec
     Reader r(*solids[i], fmt::format("solid[{}]", i), s.path);
     read_solid(r, s);
   }
+  read_fracture(top, s);
   read_output(top, s);
   for (const std::string& t : kForeignTables) {
     if (top.has(t) && !root.get(t)->is_table()) top.fail(t, "expected a table");
   }
   top.finish();
-  const bool bodies = std::any_of(s.solids.begin(), s.solids.end(), [](const Solid& solid) { return solid.dynamic; });
+  const bool bodies = std::any_of(s.solids.begin(), s.solids.end(), [](const Solid& solid) { return solid.body(); });
   if (s.blocks.empty() && s.emitters.empty() && !bodies)
-    fail_input("{}: fluid: the scene has no fluid and no dynamic solid (add a [[fluid.block]] or a [[fluid.emitter]])",
+    fail_input("{}: fluid: the scene has no fluid and no dynamic or breakable solid (add a [[fluid.block]] or a [[fluid.emitter]])",
                s.path);
   return s;
 }

@@ -63,9 +63,9 @@ struct Emitter {
   double stop = 0;                 // s; infinity (the default): until the end of the run
 };
 
-// A solid sampled by bw-sample: static (its boundary particles stay put) or dynamic
-// (a rigid body pushed by the fluid and by contacts, docs/scene.md). The table is
-// meant to grow (breakable, frc, anchored) without changing what is here.
+// A solid sampled by bw-sample: static (its boundary particles stay put), dynamic
+// (a rigid body pushed by the fluid and by contacts, docs/scene.md) or breakable (a
+// body that the fluid's load can break into fragments, method.md 3 and 4).
 struct Solid {
   std::string name;                // default: the particle file's stem
   std::string particles;           // absolute path of the particle file
@@ -74,14 +74,27 @@ struct Solid {
   Vec3d rotation_degrees = Vec3d::Zero();  // about x, then y, then z (fixed axes)
   double scale = 1;
   bool dynamic = false;            // a rigid body (needs voxels and a density)
-  double density = 0;              // kg/m^3, > 0 (required when dynamic)
+  double density = 0;              // kg/m^3, > 0 (required when dynamic; breakable: 2400)
   Vec3d velocity = Vec3d::Zero();          // dynamic: initial velocity of the centre of mass (m/s)
   Vec3d angular_velocity = Vec3d::Zero();  // dynamic: initial angular velocity, world frame (rad/s)
   double friction = 0.5;           // Coulomb coefficient of contacts with bodies, >= 0
   double restitution = 0.3;        // of contacts with bodies, in [0, 1]
+  bool breakable = false;          // a body that fractures (needs voxels; density defaults)
+  double frc = 0.5;                // fracture resistance coefficient, in (0, 1]
+  bool anchored = true;            // breakable: fixed until it breaks; then the fragments
+                                   // touching what it stood on stay fixed
+  // A rigid body of the solver: dynamic or breakable.
+  bool body() const { return dynamic || breakable; }
   // x_world = rotation * (scale * x_file) + translation
   Eigen::Quaterniond rotation() const;
   Vec3d to_world(const Vec3d& p) const;
+};
+
+// [fracture]: the energy criterion and the fragments (method.md 3 and 4, docs/scene.md).
+struct FractureSettings {
+  double window = 0.005;           // s: memory of the load's impulse (exponential)
+  double energy_scale = 2.0;       // J/m: bond energy E_sigma = frc x energy_scale x spacing
+  std::int64_t max_chunks = 64;    // MSC: most bodies of breakable origin at once
 };
 
 struct Scene {
@@ -96,6 +109,7 @@ struct Scene {
   std::vector<Block> blocks;
   std::vector<Emitter> emitters;
   std::vector<Solid> solids;
+  FractureSettings fracture;
   Aabb domain;                     // required
   FrameFields fields;              // what frames hold besides positions
   std::vector<std::string> field_names;

@@ -182,8 +182,9 @@ TEST(SceneErrors, UnknownKeysNameTheirPath) {
   expect_error(f, kMinimal + "colour = 3\n", "scene.toml: fluid.block[0].colour: unknown key");
   expect_error(f, kMinimal + "[fluid]\nviscosity = 1\n", "fluid.viscosity: unknown key");
   expect_error(f, kMinimal + "[[solid]]\nparticles = \"wall.h5\"\nscael = 2\n", "solid[0].scael: unknown key (did you mean 'scale'?)");
-  expect_error(f, kMinimal + "[[solid]]\nparticles = \"wall.h5\"\ndynamic = true\n", "solid[0].dynamic: unknown key");
-  expect_error(f, kMinimal + "[fracture]\nwindow = 0.01\n", "fracture: unknown key");
+  expect_error(f, kMinimal + "[[solid]]\nparticles = \"wall.h5\"\nbreakible = true\n",
+               "solid[0].breakible: unknown key (did you mean 'breakable'?)");
+  expect_error(f, kMinimal + "[fracture]\nwindw = 0.01\n", "fracture.windw: unknown key (did you mean 'window'?)");
   expect_error(f, kMinimal + "[output]\nfields = [\"speed\"]\n", "output.fields: 'speed' is not a field");
 }
 
@@ -206,6 +207,60 @@ TEST(SceneErrors, OutOfRangeValues) {
                "fluid.emitter[0].stop: 0.2 must be later than start (0.5)");
   expect_error(f, kMinimal + "[[fluid.emitter]]\nshape = \"cone\"\n", "fluid.emitter[0].shape: 'cone' is not \"disc\" or \"rectangle\"");
   expect_error(f, kMinimal + "[[fluid.emitter]]\nshape = \"disc\"\ncenter = [0.5, 0.5, 0.9]\nnormal = [0, 0, 0]\n", "fluid.emitter[0].normal: must not be zero");
+}
+
+TEST(Scene, BreakableSolidsAndFractureSettings) {
+  SceneFolder f;
+  const Scene d = load_scene(f.write(kMinimal + "[[solid]]\nparticles = \"wall.h5\"\nbreakable = true\n"));
+  const Solid& w = d.solids.at(0);
+  EXPECT_TRUE(w.breakable && w.body() && w.anchored && !w.dynamic);
+  EXPECT_DOUBLE_EQ(w.frc, 0.5);
+  EXPECT_DOUBLE_EQ(w.density, 2400);
+  EXPECT_DOUBLE_EQ(d.fracture.window, 0.005);
+  EXPECT_DOUBLE_EQ(d.fracture.energy_scale, FractureSettings{}.energy_scale);
+  EXPECT_EQ(d.fracture.max_chunks, 64);
+  const Scene s = load_scene(f.write(kMinimal + R"(
+[[solid]]
+particles = "wall.h5"
+breakable = true
+frc = 0.97
+anchored = false
+density = 1800
+velocity = [1, 0, 0]
+[fracture]
+window = 0.01
+energy_scale = 3.5
+max_chunks = 12
+)"));
+  const Solid& b = s.solids.at(0);
+  EXPECT_TRUE(b.breakable && !b.anchored);
+  EXPECT_DOUBLE_EQ(b.frc, 0.97);
+  EXPECT_DOUBLE_EQ(b.density, 1800);
+  EXPECT_DOUBLE_EQ(b.velocity.x(), 1);
+  EXPECT_DOUBLE_EQ(s.fracture.window, 0.01);
+  EXPECT_DOUBLE_EQ(s.fracture.energy_scale, 3.5);
+  EXPECT_EQ(s.fracture.max_chunks, 12);
+  // A scene of a breakable solid needs no fluid.
+  EXPECT_NO_THROW(load_scene(f.write("spacing = 0.02\n[time]\nend = 1\n[domain]\nmin = [0, 0, 0]\nmax = [1, 1, 1]\n"
+                                     "[[solid]]\nparticles = \"wall.h5\"\nbreakable = true\n")));
+}
+
+TEST(SceneErrors, BreakableKeys) {
+  SceneFolder f;
+  const std::string solid = kMinimal + "[[solid]]\nparticles = \"wall.h5\"\n";
+  expect_error(f, solid + "breakable = true\nfrc = 0\n", "solid[0].frc: 0 is outside (0, 1]");
+  expect_error(f, solid + "breakable = true\nfrc = 1.5\n", "solid[0].frc: 1.5 is outside (0, 1]");
+  expect_error(f, solid + "frc = 0.5\n", "solid[0].frc: only for a breakable solid");
+  expect_error(f, solid + "anchored = true\n", "solid[0].anchored: only for a breakable solid");
+  expect_error(f, solid + "breakable = 1\n", "solid[0].breakable: expected true or false");
+  expect_error(f, solid + "breakable = true\ndensity = -3\n", "solid[0].density: -3 must be positive");
+  expect_error(f, solid + "breakable = true\nvelocity = [1, 0, 0]\n", "solid[0].velocity: an anchored solid starts at rest");
+  expect_error(f, solid + "breakable = true\ndynamic = true\n", "solid[0].anchored: an anchored breakable solid");
+  expect_error(f, solid + "density = 1000\n", "solid[0].density: only for a dynamic or breakable solid");
+  expect_error(f, kMinimal + "[fracture]\nwindow = 0\n", "fracture.window: 0 must be positive");
+  expect_error(f, kMinimal + "[fracture]\nenergy_scale = -1\n", "fracture.energy_scale: -1 must be positive");
+  expect_error(f, kMinimal + "[fracture]\nmax_chunks = 0\n", "fracture.max_chunks: 0 must be at least 1");
+  expect_error(f, kMinimal + "[fracture]\nmax_chunks = 2.5\n", "fracture.max_chunks: 2.5 is not a whole number");
 }
 
 TEST(SceneErrors, MissingAndMistypedValues) {
