@@ -39,10 +39,14 @@ inline constexpr std::uint64_t kMaxCells = std::uint64_t{1} << 30;
 // spacings to a solid's surface, over the patch of radius kPatchRadius spacings a
 // boundary particle stands for, cannot move further into the surface. Fluid at rest
 // is one spacing from the surface's particles; a CFL step moves a particle at most
-// 0.4 spacings at speeds up to c0, less than 0.6; patches of 0.75 spacings around
-// particles one spacing apart cover a flat surface without gaps (0.71 would do).
+// 0.4 spacings at speeds up to c0, less than 0.6. Patches of 0.71 spacings around
+// particles one spacing apart would cover a flat surface; in a concave corner the
+// edge's particle has a patch tilted halfway between the faces, whose plane passes
+// in front of the faces' particles, and a particle sliding up it reaches 0.76
+// spacings from the nearest face particle: one spacing closes that gap (a convex
+// edge's nearest face particles are 1.5 spacings from the fluid beside it).
 inline constexpr double kContactDistance = 0.6;
-inline constexpr double kPatchRadius = 0.75;
+inline constexpr double kPatchRadius = 1.0;
 // A step shorter than this fraction of the proposed dt before a frame time would be
 // a sliver: the last two steps share the remaining time instead.
 inline constexpr double kSplitBeforeFrame = 2.0;

@@ -34,7 +34,7 @@ TEST(WindingNumber, OneInsideZeroOutside) {
   EXPECT_NEAR(study::winding_number(tank, Vec3d(0.5, 0.5, 1.05)), 0.0, 1e-9) << "above the open top";
 }
 
-// A run folder with a tank (the open box [0, 1]^2 x [0, 1], walls 0.1) and frames
+// A run folder with a tank (the open box [0, 1]^2 x [0, 1], walls 0.2) and frames
 // the test fills in.
 struct SyntheticRun {
   test::TempDir dir;
@@ -42,10 +42,10 @@ struct SyntheticRun {
   std::vector<FrameData> frames;
 
   SyntheticRun() {
-    SampledSolid tank = sample::sample_mesh(mesh::open_box(Vec3d(0, 0, 0), Vec3d(1, 1, 1), 0.1), {0.1, false, "tank", 1});
+    SampledSolid tank = sample::sample_mesh(mesh::open_box(Vec3d(0, 0, 0), Vec3d(1, 1, 1), 0.2), {0.1, false, "tank", 1});
     write_particles(tank, dir.file("tank.h5"), "check test");
-    std::ofstream(dir.file("scene.toml")) << "spacing = 0.1\n[time]\nend = 1\n[domain]\nmin = [-0.2, -0.2, -0.2]\n"
-                                             "max = [1.2, 1.2, 2]\n[[fluid.block]]\nmin = [0, 0, 0]\nmax = [1, 1, 0.5]\n"
+    std::ofstream(dir.file("scene.toml")) << "spacing = 0.1\n[time]\nend = 1\n[domain]\nmin = [-0.3, -0.3, -0.3]\n"
+                                             "max = [1.3, 1.3, 2]\n[[fluid.block]]\nmin = [0, 0, 0]\nmax = [1, 1, 0.5]\n"
                                              "[[solid]]\nparticles = \"tank.h5\"\n";
     std::ifstream in(dir.file("scene.toml"));
     run.scene_text.assign(std::istreambuf_iterator<char>(in), {});
@@ -86,6 +86,14 @@ struct SyntheticRun {
 
 const std::vector<Vec3d> kInCavity = {{0.2, 0.2, 0.1}, {0.5, 0.5, 0.3}, {0.8, 0.7, 0.45}};
 
+TEST(StabilityChecks, DistanceToSurfaceOfABox) {
+  const TriMesh box = mesh::box(Vec3d(0, 0, 0), Vec3d(1, 2, 3));
+  EXPECT_NEAR(study::distance_to_surface(box, Vec3d(0.5, 1, 1.5)), 0.5, 1e-12) << "centre: nearest face x";
+  EXPECT_NEAR(study::distance_to_surface(box, Vec3d(0.9, 0.1, 2.95)), 0.05, 1e-12) << "near the top";
+  EXPECT_NEAR(study::distance_to_surface(box, Vec3d(2, 3, 4)), std::sqrt(3.0), 1e-12) << "outside, nearest a corner";
+  EXPECT_NEAR(study::distance_to_surface(box, Vec3d(-1, 1, 4)), std::sqrt(2.0), 1e-12) << "outside, nearest an edge";
+}
+
 TEST(StabilityChecks, CleanRunPasses) {
   SyntheticRun s;
   s.add(kInCavity, 0, 10, 0.0);
@@ -105,14 +113,16 @@ TEST(StabilityChecks, FindParticlesInSolidsOutsideTheDomainAndNotNumbers) {
   SyntheticRun s;
   s.add(kInCavity, 0, 10, 0.0);
   std::vector<Vec3d> bad = kInCavity;
-  bad.push_back({-0.05, 0.5, 0.3});   // in a wall
-  bad.push_back({0.5, 0.5, -0.05});   // in the floor
+  bad.push_back({-0.1, 0.5, 0.3});    // in a wall, a spacing deep
+  bad.push_back({0.5, 0.5, -0.06});   // in the floor, behind its boundary particles
+  bad.push_back({0.5, 0.3, -0.03});   // pressed against the floor's boundary particles: contact
   bad.push_back({0.5, 0.5, 3.0});     // above the domain
   bad.push_back({std::nan(""), 0.5, 0.5});
   s.add(bad, 0, 10, 0.0);
   const study::StabilityReport r = study::check_stability(s.write(), {});
   EXPECT_FALSE(r.stable());
   EXPECT_EQ(r.inside_solids, 2);
+  EXPECT_NEAR(r.deepest, 1.0, 1e-6);
   EXPECT_EQ(r.outside_domain, 1);
   EXPECT_EQ(r.nonfinite, 1);
   EXPECT_EQ(r.first_bad_frame, 1);
@@ -128,14 +138,15 @@ TEST(StabilityChecks, FindDensityErrorEnergyRiseLostParticlesAndStops) {
   s.run.status = "step 12 (t = 0.1 s): the fluid blew up";
   const study::StabilityReport r = study::check_stability(s.write(), {});
   EXPECT_NEAR(r.run.energy_growth, 0.05, 1e-12);
-  ASSERT_EQ(r.failures.size(), 3u);
+  ASSERT_EQ(r.failures.size(), 4u);
   EXPECT_NE(r.failures[0].find("did not finish: step 12"), std::string::npos) << r.failures[0];
   EXPECT_NE(r.failures[1].find("worst density error 0.3"), std::string::npos) << r.failures[1];
   EXPECT_NE(r.failures[2].find("energy rose 5.00e-02"), std::string::npos) << r.failures[2];
+  EXPECT_NE(r.failures[3].find("energy ended 5.00e-02"), std::string::npos) << r.failures[3];
   ASSERT_EQ(r.leaks.size(), 1u);
   EXPECT_NE(r.leaks[0].find("2 particles left the domain"), std::string::npos) << r.leaks[0];
   // Within looser limits, only what no limit can excuse is left.
-  const study::StabilityReport loose = study::check_stability(s.dir.path(), {0.5, 0.1});
+  const study::StabilityReport loose = study::check_stability(s.dir.path(), {0.5, 0.1, 0.1});
   EXPECT_EQ(loose.failures.size(), 1u);
   EXPECT_EQ(loose.leaks.size(), 1u);
 }

@@ -134,6 +134,37 @@ HydrostaticError hydrostatic_error(const std::string& run_dir, const Vec3d& poin
   return e;
 }
 
+double distance_to_surface(const TriMesh& mesh, const Vec3d& p) {
+  // Closest point on each triangle (Ericson, Real-Time Collision Detection, 5.1.5).
+  double best = std::numeric_limits<double>::infinity();
+  for (const Triangle& t : mesh.triangles) {
+    const Vec3d a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
+    const Vec3d ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    Vec3d q;
+    if (d1 <= 0 && d2 <= 0) {
+      q = a;
+    } else {
+      const Vec3d bp = p - b;
+      const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+      const Vec3d cp = p - c;
+      const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+      const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+      if (d3 >= 0 && d4 <= d3) q = b;
+      else if (vc <= 0 && d1 >= 0 && d3 <= 0) q = a + ab * (d1 / (d1 - d3));
+      else if (d6 >= 0 && d5 <= d6) q = c;
+      else if (vb <= 0 && d2 >= 0 && d6 <= 0) q = a + ac * (d2 / (d2 - d6));
+      else if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) q = b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+      else {
+        const double denom = 1 / (va + vb + vc);
+        q = a + ab * (vb * denom) + ac * (vc * denom);
+      }
+    }
+    best = std::min(best, (p - q).norm());
+  }
+  return best;
+}
+
 double winding_number(const TriMesh& mesh, const Vec3d& p) {
   // Van Oosterom and Strackee's signed solid angle of each triangle seen from p.
   double omega = 0;
@@ -152,6 +183,7 @@ StabilityReport check_stability(const std::string& run_dir, const StabilityLimit
   report.run = read_indicators(run_dir);
   const RunRecord run = read_run(run_dir + "/run.h5");
   const scene::Scene scene = scene::parse_scene(run.scene_text, run.scene_path);
+  const double spacing = parameter(run, "spacing", run_dir + "/run.h5");
 
   // The solids' meshes in the world, with their bounding boxes for a quick rejection.
   std::vector<TriMesh> solids;
@@ -180,6 +212,9 @@ StabilityReport check_stability(const std::string& run_dir, const StabilityLimit
       for (std::size_t s = 0; s < solids.size(); ++s) {
         if ((q.array() < boxes[s].min.array()).any() || (q.array() > boxes[s].max.array()).any()) continue;
         if (std::abs(winding_number(solids[s], q)) > 0.5) {
+          const double depth = distance_to_surface(solids[s], q) / spacing;
+          report.deepest = std::max(report.deepest, depth);
+          if (depth < limits.penetration) continue;
           ++report.inside_solids;
           ++bad;
           break;
@@ -198,12 +233,16 @@ StabilityReport check_stability(const std::string& run_dir, const StabilityLimit
   if (r.removed > 0) l.push_back(fmt::format("{} particles left the domain", r.removed));
   if (report.outside_domain > 0) l.push_back(fmt::format("{} particle positions outside the domain", report.outside_domain));
   if (report.inside_solids > 0)
-    l.push_back(fmt::format("{} particle positions inside solids (first in frame {})", report.inside_solids,
-                            report.first_bad_frame));
+    l.push_back(fmt::format("{} particle positions inside solids, behind their boundary particles (first in frame {}, "
+                            "deepest {:.2f} spacings)",
+                            report.inside_solids, report.first_bad_frame, report.deepest));
   if (!(r.density_error_worst <= limits.density_error))
     f.push_back(fmt::format("worst density error {:.4f} above {}", r.density_error_worst, limits.density_error));
   if (!(r.energy_growth <= limits.energy_growth))
     f.push_back(fmt::format("energy rose {:.2e} of its initial total, above {}", r.energy_growth, limits.energy_growth));
+  if (!(r.energy_drift <= limits.energy_final_growth))
+    f.push_back(fmt::format("energy ended {:.2e} of its initial total above it, above {}", r.energy_drift,
+                            limits.energy_final_growth));
   return report;
 }
 

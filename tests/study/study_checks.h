@@ -66,6 +66,8 @@ HydrostaticError hydrostatic_error(const std::string& run_dir, const Vec3d& poin
 // Winding number of a closed, outward-oriented mesh around a point: 1 inside, 0
 // outside (the sum of the triangles' signed solid angles over 4 pi).
 double winding_number(const TriMesh& mesh, const Vec3d& point);
+// Distance from a point to the nearest point of a mesh's triangles.
+double distance_to_surface(const TriMesh& mesh, const Vec3d& point);
 
 struct StabilityLimits {
   // Largest worst-frame density error a stable run may show. An impact at speed v
@@ -73,10 +75,24 @@ struct StabilityLimits {
   // 10 x the scene's largest speed; twice that allows for corners where the
   // compression of two walls adds up. A blow-up goes far past it.
   double density_error = 0.2;
-  // Largest rise of the total energy above its initial value, relative to it. A closed
-  // scene only loses energy (viscosity, wall friction, contact); symplectic Euler's
-  // bounded oscillation of the elastic energy is far below this.
-  double energy_growth = 1e-3;
+  // Largest rise of the total energy above its initial value, relative to it, at any
+  // frame. A closed scene only loses energy (viscosity, wall friction, contact), but
+  // symplectic Euler conserves a shadow energy, not the energy itself: while an impact
+  // stores energy in compression, the total it reports rises by up to about CFL / 2
+  // of the elastic energy then held (the 30 m/s jet of the suite: 1.2% of its initial
+  // total, 25% of the elastic energy at the impact), and falls back once the
+  // compression is released. A blow-up grows it by orders of magnitude.
+  double energy_growth = 0.02;
+  // Rise of the total energy at the last frame above its initial value: growth that
+  // stays is not the integrator's transient.
+  double energy_final_growth = 1e-3;
+  // Depth below a solid's surface, in spacings, from which a particle counts as inside
+  // it. A solid's boundary particles lie half a spacing behind its faces (bw-sample):
+  // they are the wall the fluid sees. A fluid particle pressed against them at an
+  // impact comes closer than the spacing of its lattice and its centre passes the
+  // face, which is contact, not a leak; a particle behind the boundary particles has
+  // gone through the wall.
+  double penetration = 0.5;
 };
 
 struct StabilityReport {
@@ -84,7 +100,8 @@ struct StabilityReport {
   int frames = 0;
   long nonfinite = 0;        // particle positions that are not numbers, over all frames
   long outside_domain = 0;   // particles outside the domain box, over all frames
-  long inside_solids = 0;    // particles inside a solid's mesh, over all frames
+  long inside_solids = 0;    // particles inside a solid deeper than `penetration`, over all frames
+  double deepest = 0;        // deepest position of a particle inside a solid (spacings), any depth
   int first_bad_frame = -1;  // first frame with any of the three
   // One line per broken check: `leaks` for particles that left the domain or entered a
   // solid, `failures` for the others (did not finish, non-finite values, density
