@@ -81,19 +81,30 @@ int main(int argc, char** argv) {
     // A crate, 0.1 m cube, for the floating-body scene.
     mesh::export_mesh(mesh::box({0, 0, 0}, {0.1, 0.1, 0.1}), dir + "/crate.obj");
     // Scene 3: a valley 8 m long falling 0.12 m per metre along x, with parabolic
-    // sides rising 0.8 m over 1.5 m; its floor is 1.2 m high at x = 0.
-    mesh::export_mesh(mesh::heightfield({0, -1.5}, {8, 1.5}, 64, 24, -0.2,
-                                        [](double x, double y) { return 1.2 - 0.12 * x + 0.8 * (y / 1.5) * (y / 1.5); }),
+    // sides rising 0.8 m over 1.5 m; its floor is 1.2 m high at x = 0. Across it, at
+    // x = 4.7 .. 5.4 m, a flat bench cut down to z = 0.5 m (the terrain falls to it
+    // over 0.1 m on either side) is the foundation of the dam, which stands on its
+    // middle (x = 4.8 .. 5.3), 0.1 m from where the terrain starts to rise: quads of
+    // 0.1 m along x put the bench's edges on vertices, and the bench's height above
+    // the block's bottom (0.7 m) is a multiple of the scene's spacings (0.1, 0.05,
+    // 0.025, 0.0125 m), so the bench lies on a cell plane of bw-sample's grid and the
+    // dam stands on the terrain, touching it without overlapping it.
+    mesh::export_mesh(mesh::heightfield({0, -1.5}, {8, 1.5}, 80, 24, -0.2,
+                                        [](double x, double y) {
+                                          if (x > 4.7 - 1e-9 && x < 5.4 + 1e-9) return 0.5;
+                                          return 1.2 - 0.12 * x + 0.8 * (y / 1.5) * (y / 1.5);
+                                        }),
                       dir + "/valley.obj");
-    // Scene 3: a gravity dam across the valley at x = 5: trapezoidal section, 0.5 m
-    // at the base, 0.15 m at the crest, from z = 0.4 (inside the terrain) to 1.7 m.
+    // Scene 3: a gravity dam on that bench, across the whole valley: trapezoidal
+    // section, 0.5 m at the base, 0.15 m at the crest, from z = 0.5 to 1.7 m; its
+    // upstream face is vertical.
     {
-      bw::TriMesh dam = mesh::extrude({{0, 0}, {0.5, 0}, {0.15, 1.3}, {0, 1.3}}, -1.5, 1.5);
+      bw::TriMesh dam = mesh::extrude({{0, 0}, {0.5, 0}, {0.15, 1.2}, {0, 1.2}}, -1.5, 1.5);
       bw::Mat3d r;
       r << 1, 0, 0,  //
           0, 0, 1,   //
           0, 1, 0;   // (u, v, w) -> (u, w, v): section in xz, extruded along y
-      mesh::transform(dam, r, Vec3d(4.8, 0, 0.4));
+      mesh::transform(dam, r, Vec3d(4.8, 0, 0.5));
       for (auto& t : dam.triangles) std::swap(t[1], t[2]);  // the swap of axes mirrors
       mesh::export_mesh(dam, dir + "/dam.obj");
     }
