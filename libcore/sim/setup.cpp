@@ -277,7 +277,7 @@ std::int64_t EmitterLattice::layers_by(double t, double spacing) const {
   return lattice_count(distance_by(t), spacing);
 }
 
-std::vector<Vec3d> surface_normals(const SampledSolid& solid, NormalWeighting weighting, std::vector<double>* flatness) {
+std::vector<Vec3d> surface_normals(const SampledSolid& solid, std::vector<double>* flatness) {
   const SampleGrid& g = solid.grid;
   const std::int64_t nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
   auto key = [&](std::int64_t i, std::int64_t j, std::int64_t k) { return (k * ny + j) * nx + i; };
@@ -310,20 +310,14 @@ std::vector<Vec3d> surface_normals(const SampledSolid& solid, NormalWeighting we
           if (it == keys.end() || *it != key(i, j, k)) continue;
           const Vec3d centre = g.cell_center({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j),
                                               static_cast<std::int32_t>(k)});
-          const std::size_t cell = static_cast<std::size_t>(it - keys.begin());
-          if (weighting == NormalWeighting::whole_triangles) {
-            if (!mesh::triangle_box_overlap(centre, half, a, b, c)) continue;
-            sum[cell] += area_normal;
-            area[cell] += area_normal.norm();
-          } else {
-            // Faces on the cell's planes count (their cell is the surface cell the
-            // sampler marked on their inner side), whatever the rounding of the planes.
-            const double inside = area_in_box(a, b, c, centre, half + Vec3d::Constant(kCellPlaneSlack * g.spacing));
-            const double whole = area_normal.norm();
-            if (whole > 0 && inside > 0) {
-              sum[cell] += area_normal * (inside / whole);
-              area[cell] += inside;
-            }
+          // Faces on the cell's planes count (the cell is the surface cell the sampler
+          // marked on their inner side), whatever the rounding of the planes.
+          const double inside = area_in_box(a, b, c, centre, half + Vec3d::Constant(kCellPlaneSlack * g.spacing));
+          const double whole = area_normal.norm();
+          if (whole > 0 && inside > 0) {
+            const std::size_t cell = static_cast<std::size_t>(it - keys.begin());
+            sum[cell] += area_normal * (inside / whole);
+            area[cell] += inside;
           }
         }
   }
@@ -471,8 +465,7 @@ Setup prepare(const scene::Scene& s, double end_time) {
     const Eigen::Quaterniond q = solid.rotation();
     const std::vector<Vec3d> positions = sampled.surface_positions();
     std::vector<double> flatness;
-    const std::vector<Vec3d> normals = surface_normals(
-        sampled, solid.dynamic ? NormalWeighting::area_in_cell : NormalWeighting::whole_triangles, &flatness);
+    const std::vector<Vec3d> normals = surface_normals(sampled, &flatness);
     BodyGeometry& g = geometry[i];
     g.spacing = effective;
     for (std::size_t k = 0; k < positions.size(); ++k) g.particles.push_back(q * (solid.scale * positions[k]) + solid.translation);

@@ -127,21 +127,14 @@ struct Setup {
 Setup prepare(const scene::Scene& scene, double end_time);
 
 // The surface normal at each surface particle of a sampled solid (in the file's
-// frame), or zero where the normals cancel (a part thinner than a cell):
-//   whole_triangles  the mean normal of the triangles that overlap its cell, each
-//                    weighted by its whole area (static solids: how the fluid's wall
-//                    contact has always seen them);
-//   area_in_cell     each weighted by its area inside the cell: the mean normal of
-//                    the surface within the cell, so that a box's edges and corners
-//                    are exact bisectors whatever the triangulation (dynamic solids,
-//                    whose contacts push along these normals).
-// `flatness`, when given, receives per particle |sum of the weighted normals| /
-// their total weight: 1 on a face, cos(45 deg) = 0.71 on a box's edge, 0.58 on its
-// corner, 0 where the normal is zero.
-enum class NormalWeighting { whole_triangles, area_in_cell };
-std::vector<Vec3d> surface_normals(const SampledSolid& solid,
-                                   NormalWeighting weighting = NormalWeighting::whole_triangles,
-                                   std::vector<double>* flatness = nullptr);
+// frame): the mean normal of the surface within its cell (each triangle that
+// overlaps the cell weighted by its area inside it, faces lying on the cell's planes
+// included), so that a box's edges and corners are exact bisectors whatever the
+// triangulation; zero where the normals cancel (a part thinner than a cell).
+// `flatness`, when given, receives per particle |sum of the weighted normals| / their
+// total weight: 1 on a face, cos(45 deg) = 0.71 on a box's edge, 0.58 on its corner,
+// 0 where the normal is zero.
+std::vector<Vec3d> surface_normals(const SampledSolid& solid, std::vector<double>* flatness = nullptr);
 
 // The points of one emitter layer, spaced `spacing` apart on its disc or rectangle.
 std::vector<Vec3d> emitter_points(const scene::Emitter& emitter, double spacing);

@@ -41,8 +41,9 @@ TEST_P(Scene, RunsEndToEnd) {
   const auto made = test::make_scenes(r.name, out.path(),
                          "SPACING=" + r.spacing + " END=" + r.end + " WIDTH=160 HEIGHT=90 RENDER_CHUNK=4 CHECK_SEEDS=16");
   ASSERT_EQ(made.exit_code, 0) << made.out << made.err;
-  const std::string dir = out.path() + "/scenes/" + r.name + "/" + r.spacing;
-  EXPECT_NE(made.out.find(dir + "/" + r.name + ".mp4"), std::string::npos) << "names its video: " << made.out;
+  const std::string dir = out.path() + "/scenes/" + r.name + "/" + r.spacing + "-end" + r.end;
+  const std::string video = dir + "/" + r.name + "-160x90.mp4";
+  EXPECT_NE(made.out.find(video), std::string::npos) << "names its video: " << made.out;
 
   // The run: complete, to the end asked for, with water in it.
   const RunRecord run = read_run(dir + "/run.h5");
@@ -54,9 +55,9 @@ TEST_P(Scene, RunsEndToEnd) {
   EXPECT_EQ(count_files(dir + "/frames", ".h5"), frames);
 
   // One image per frame (rendered in chunks of 4), and the video of them.
-  EXPECT_EQ(count_files(dir + "/images", ".png"), frames);
-  ASSERT_TRUE(test::exists(dir + "/" + r.name + ".mp4"));
-  EXPECT_GT(fs::file_size(dir + "/" + r.name + ".mp4"), 1000u);
+  EXPECT_EQ(count_files(dir + "/images-160x90", ".png"), frames);
+  ASSERT_TRUE(test::exists(video));
+  EXPECT_GT(fs::file_size(video), 1000u);
 
   // The Voronoi steps exactly when the scene has breakable solids.
   const bool breakable = test::has_breakable(r.name);
@@ -67,7 +68,7 @@ TEST_P(Scene, RunsEndToEnd) {
   EXPECT_EQ(checks > 0, breakable);
 
   // Made again, nothing is left to do.
-  const auto again = test::make_scenes(dir + "/" + r.name + ".mp4", out.path(),
+  const auto again = test::make_scenes(video, out.path(),
                           "SPACING=" + r.spacing + " END=" + r.end + " WIDTH=160 HEIGHT=90 RENDER_CHUNK=4 CHECK_SEEDS=16 -q");
   EXPECT_EQ(again.exit_code, 0) << "make -q: something would be remade\n" << again.out << again.err;
 }
