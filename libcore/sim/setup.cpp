@@ -176,6 +176,25 @@ struct BodyGeometry {
   }
 };
 
+// The anchor of an anchored breakable solid: its voxels within kAnchorReach of the
+// mean of the two spacings from another solid's boundary particles at t = 0 (what it
+// stands on: a wall's bottom layer on a floor is one spacing from the floor's
+// particles).
+constexpr double kAnchorReach = 1.5;
+void mark_anchors(Setup& out, const std::vector<BodyGeometry>& geometry) {
+  for (BodySetup& body : out.bodies) {
+    if (!body.breakable || !body.anchored) continue;
+    body.voxel_anchor.assign(body.voxel_centers.size(), 0);
+    for (std::size_t j = 0; j < geometry.size(); ++j) {
+      if (j == body.solid || geometry[j].particles.empty()) continue;
+      const double reach = kAnchorReach * 0.5 * (body.voxel_size + geometry[j].spacing);
+      const PointHash grid(geometry[j].particles, reach);
+      for (std::size_t v = 0; v < body.voxel_centers.size(); ++v)
+        if (!body.voxel_anchor[v] && grid.near(body.voxel_centers[v], reach)) body.voxel_anchor[v] = 1;
+    }
+  }
+}
+
 std::string point_text(const Vec3d& q) { return fmt::format("({:.4g}, {:.4g}, {:.4g}) m", q.x(), q.y(), q.z()); }
 
 // A dynamic solid may not start inside the fluid or another solid (kOverlapFraction).
@@ -469,11 +488,11 @@ Setup prepare(const scene::Scene& s, double end_time) {
     BodyGeometry& g = geometry[i];
     g.spacing = effective;
     for (std::size_t k = 0; k < positions.size(); ++k) g.particles.push_back(q * (solid.scale * positions[k]) + solid.translation);
-    if (solid.dynamic) {
+    if (solid.body()) {
       if (!sampled.has_voxels || sampled.voxels.empty())
-        fail_input("{}: solid[{}].particles: {} has no voxels; a dynamic solid needs its volume (sample it with "
+        fail_input("{}: solid[{}].particles: {} has no voxels; a {} solid needs its volume (sample it with "
                    "bw-sample --volume)",
-                   s.path, i, solid.particles_given);
+                   s.path, i, solid.particles_given, solid.breakable ? "breakable" : "dynamic");
       BodySetup body;
       body.solid = i;
       body.name = solid.name;
@@ -487,6 +506,16 @@ Setup prepare(const scene::Scene& s, double end_time) {
       body.flatness = flatness;
       body.velocity = solid.velocity;
       body.angular_velocity = solid.angular_velocity;
+      if (solid.breakable) {
+        body.breakable = true;
+        body.anchored = solid.anchored;
+        body.frc = solid.frc;
+        body.density = solid.density;
+        body.voxel_size = effective;
+        body.voxel_cells = sampled.voxels;
+        body.particle_cells = sampled.surface;
+        body.voxel_centers = centers;
+      }
       g.set_interior(sampled, solid);
       out.bodies.push_back(std::move(body));
       bset.per_solid.push_back(0);
@@ -576,7 +605,9 @@ Setup prepare(const scene::Scene& s, double end_time) {
     p.contact_frequency = std::max(p.scene_speed, kMinContactSpeed) / (kContactPenetration * p.spacing);
     p.contact_dt = kContactStepFactor / p.contact_frequency;
     check_overlaps(s, out, geometry);
+    mark_anchors(out, geometry);
   }
+  out.fracture = s.fracture;
 
   return out;
 }

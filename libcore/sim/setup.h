@@ -107,6 +107,14 @@ struct BodySetup {
   std::vector<double> flatness; // of the surface there (surface_normals)
   Vec3d velocity = Vec3d::Zero();          // of the centre of mass (m/s)
   Vec3d angular_velocity = Vec3d::Zero();  // world frame (rad/s)
+  // Breakable solids (method.md 3 and 4): its voxels (cells of the file's grid and
+  // their centres in the reference configuration), the cell of each boundary
+  // particle, and which voxels touch another solid at t = 0 (its anchor).
+  bool breakable = false, anchored = false;
+  double frc = 0, density = 0, voxel_size = 0;
+  std::vector<CellIndex> voxel_cells, particle_cells;
+  std::vector<Vec3d> voxel_centers;
+  std::vector<std::uint8_t> voxel_anchor;
 };
 
 struct Setup {
@@ -114,7 +122,8 @@ struct Setup {
   ParticleArrays fluid;         // the blocks' particles at t = 0
   std::vector<EmitterLattice> emitters;
   BoundarySet boundary;         // static solids
-  std::vector<BodySetup> bodies;        // dynamic solids, in scene order
+  std::vector<BodySetup> bodies;        // dynamic and breakable solids, in scene order
+  scene::FractureSettings fracture;     // [fracture] (used when a body is breakable)
   std::vector<SolidMaterial> materials; // one per scene solid
   std::vector<std::size_t> block_particles;  // fluid particles of each block, in order
   std::int64_t emitter_particles = 0;  // what the emitters inject over the run (before MFP)
