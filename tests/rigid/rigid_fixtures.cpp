@@ -8,8 +8,8 @@
 
 namespace bw::test {
 
-void write_box(const std::string& path, const Vec3d& size, double spacing) {
-  SampledSolid solid = sample::sample_mesh(mesh::box(Vec3d::Zero(), size), {spacing, true, "box", 1.0});
+void write_box(const std::string& path, const Vec3d& size, double spacing, bool volume) {
+  SampledSolid solid = sample::sample_mesh(mesh::box(Vec3d::Zero(), size), {spacing, volume, "box", 1.0});
   write_particles(solid, path, "rigid test");
 }
 

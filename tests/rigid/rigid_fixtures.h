@@ -14,9 +14,10 @@
 
 namespace bw::test {
 
-// A solid box [0, size] sampled at `spacing` with its voxels (bw-sample --volume)
-// into `path`: its boundary particles lie half a spacing inside its faces.
-void write_box(const std::string& path, const Vec3d& size, double spacing);
+// A solid box [0, size] sampled at `spacing` with its voxels (bw-sample --volume;
+// without them when `volume` is false) into `path`: its boundary particles lie half a
+// spacing inside its faces.
+void write_box(const std::string& path, const Vec3d& size, double spacing, bool volume = true);
 
 // An open tank (floor and four walls, mesh::open_box) whose cavity is [0, inner] with
 // walls `wall` thick, sampled at `spacing` into `path`: its particles lie half a
