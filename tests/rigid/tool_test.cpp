@@ -129,7 +129,7 @@ TEST(BwSimBodies, BadInputsExitWithTwoAndWriteNothing) {
   expect_bad_input(kPool + "[[solid]]\nparticles = \"box.h5\"\ndynamic = true\ntranslation = [0.04, 0.02, 0.05]\n",
                    "solid[1].density: missing (required for a dynamic solid");
   expect_bad_input(kPool + "[[solid]]\nparticles = \"box.h5\"\ndensity = 600\ntranslation = [0.04, 0.02, 0.05]\n",
-                   "solid[1].density: only for a dynamic solid");
+                   "solid[1].density: only for a dynamic or breakable solid");
   expect_bad_input(kPool + box("crate", {0.04, 0.02, 0.05}, "restitution = 1.5\n"),
                    "solid[1].restitution: 1.5 is outside [0, 1]");
   expect_bad_input(kPool + box("crate", {0.04, 0.02, 0.05}, "friction = -0.1\n"),
