@@ -26,6 +26,10 @@
 // step) this factor keeps c dt / m_eff <= 1. A larger one made a box resting on a
 // floor chatter: the drag overshot, flipping sign every step at Coulomb's limit.
 #define BW_TANGENT_DAMPING 0.5f
+// A face normal serves a pair only while the pair lies at least this fraction of the
+// contact distance along it (a box's edge resting on a floor lies a whole contact
+// distance above it; fragments side by side across a crack lie beside each other).
+#define BW_FACE_DEPTH 0.5f
 
 // World positions, velocities and normals of the bodies' boundary particles, master
 // indices first + k for k < count, from their reference arrays (r = x_ref - c_ref and
@@ -223,11 +227,21 @@ __kernel void boundary_forces(SimParams P, ContactParams C, uint first, uint cou
         } else {
           nx = dx, ny = dy, nz = dz;
         }
-        const float m2 = nx * nx + ny * ny + nz * nz;
+        float m2 = nx * nx + ny * ny + nz * nz;
         if (!(m2 > 0.0f)) continue;
-        const float inv = 1.0f / sqrt(m2);
+        float inv = 1.0f / sqrt(m2);
         nx *= inv, ny *= inv, nz *= inv;
-        const float d = dx * nx + dy * ny + dz * nz;
+        float d = dx * nx + dy * ny + dz * nz;
+        // Faces that do not face each other (two faces at right angles, side by side
+        // across a crack, or a face beside an edge in its own plane): a face normal
+        // would measure them a whole spacing deep; the line between them serves.
+        if (d < BW_FACE_DEPTH * d0 && (oface || bface)) {
+          nx = dx, ny = dy, nz = dz;
+          m2 = r2;
+          inv = 1.0f / sqrt(m2);
+          nx *= inv, ny *= inv, nz *= inv;
+          d = dx * nx + dy * ny + dz * nz;
+        }
         const float l2 = r2 - d * d;
         if (l2 >= reach2) continue;
         const float delta = d0 - d;

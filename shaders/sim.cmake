@@ -8,4 +8,5 @@ bw_embed_files(TARGET bw_sim_kernels NAMESPACE bw::sim_kernels FILES
   ${CMAKE_CURRENT_LIST_DIR}/radix_sort.cl
   ${CMAKE_CURRENT_LIST_DIR}/grid.cl
   ${CMAKE_CURRENT_LIST_DIR}/fluid.cl
-  ${CMAKE_CURRENT_LIST_DIR}/rigid.cl)
+  ${CMAKE_CURRENT_LIST_DIR}/rigid.cl
+  ${CMAKE_CURRENT_LIST_DIR}/fracture.cl)

@@ -140,7 +140,7 @@ RunSummary Simulation::run() {
     SolidRecord r;
     r.name = solid.name;
     r.particles = solid.particles;
-    r.kind = solid.dynamic ? "dynamic" : "static";
+    r.kind = solid.breakable ? "breakable" : solid.dynamic ? "dynamic" : "static";
     for (int b = 0; b < solver.body_count(); ++b)
       if (solver.body_info(b).solid == static_cast<std::int32_t>(i) && solver.body_info(b).parent < 0) r.body = b;
     r.translation = solid.translation;
@@ -218,6 +218,7 @@ RunSummary Simulation::run() {
       br.voxels = info.voxels;
       record.bodies.push_back(br);
     }
+    record.fractures = solver.fracture_events();
 
     const double energy = row.kinetic_energy + row.potential_energy + st.elastic;
     if (f == 0) {

@@ -236,6 +236,7 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   // initial velocities.
   s.static_boundary = setup.boundary;
   s.materials = setup.materials;
+  std::vector<int> body_of_setup;
   for (const BodySetup& b : setup.bodies) {
     BodySpec spec;
     spec.name = b.name;
@@ -252,8 +253,11 @@ Solver::Solver(const Setup& setup, compute::Context& context)
     spec.state.position = b.mass.center;
     spec.state.linear_velocity = b.velocity;
     spec.state.angular_velocity = b.angular_velocity;
-    s.add_body(spec);
+    spec.fixed = b.breakable && b.anchored;
+    body_of_setup.push_back(s.add_body(spec));
   }
+  if (std::any_of(setup.bodies.begin(), setup.bodies.end(), [](const BodySetup& b) { return b.breakable; }))
+    s.enable_fracture(setup, body_of_setup);
 }
 
 Solver::~Solver() = default;
@@ -326,6 +330,7 @@ StepInfo Solver::step(double t_target) {
   }
 
   if (s.rigid) s.rigid_forces(dt);
+  if (s.fracture) s.fracture_load(dt);
   s.integrate.args(s.P, s.n, static_cast<float>(dt), s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.ax, s.ay,
                    s.az, s.phi, s.bstart, s.bx, s.by, s.bz, s.bnx, s.bny, s.bnz, s.bvx, s.bvy, s.bvz, s.hold[f],
                    s.emitter_table);
@@ -334,6 +339,7 @@ StepInfo Solver::step(double t_target) {
   s.grid_valid = false;
   s.t = lands ? t_target : s.t + dt;
   ++s.steps;
+  if (s.fracture) s.fracture_test();
 
   StepInfo info;
   info.dt = dt;
@@ -361,7 +367,7 @@ std::uint64_t Solver::device_bytes() const {
                           &s.ay, &s.az, &s.start, &s.bx, &s.by, &s.bz, &s.bpsi, &s.bvx, &s.bvy, &s.bvz, &s.bnx, &s.bny, &s.bnz, &s.bsolid,
                           &s.bstart, &s.step_out, &s.frame_out, &s.ex, &s.ey, &s.ez, &s.emitter_table})
     total += b->bytes();
-  return total + s.sort->scratch_bytes() + s.rigid_bytes() + s.bflat.bytes();
+  return total + s.sort->scratch_bytes() + s.rigid_bytes() + s.bflat.bytes() + s.fracture_bytes();
 }
 
 std::int64_t Solver::fluid_count() {

@@ -40,6 +40,7 @@
 
 #include "compute/context.h"
 #include "io/frame_file.h"
+#include "io/run_file.h"
 #include "rigid/body.h"
 #include "sim/setup.h"
 
@@ -147,6 +148,9 @@ class Solver {
   BodyStates body_states() const;
   // Master index of a body's first boundary particle, valid until bodies change.
   std::uint32_t body_first_particle(int body) const;
+  // The fractures so far (docs/formats.md, /fracture), in order; empty without
+  // breakable solids.
+  const std::vector<FractureEvent>& fracture_events() const;
 
   // For tests and diagnostics: also sum the forces on the static solids' particles
   // (fluid reaction and contacts with bodies) and accumulate their impulse over the

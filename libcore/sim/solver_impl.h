@@ -15,6 +15,7 @@
 #include "common/error.h"
 #include "compute/context.h"
 #include "compute/radix_sort.h"
+#include "sim/fracture_stage.h"
 #include "sim/solver.h"
 #include "sim/setup.h"
 #include "sph_common.h"
@@ -144,6 +145,8 @@ struct Solver::Impl {
   Buffer bflat;                 // sorted flatness of the boundary particles (with bodies only)
   std::vector<SolidMaterial> materials;
   bool boundary_dirty = false;  // bodies moved: sort the boundary again before the density
+  // fracture: null unless the scene has a breakable solid (no kernel, no buffer)
+  std::unique_ptr<FractureStage> fracture;
 
   explicit Impl(compute::Context& c) : ctx(c) {}
 
@@ -163,6 +166,15 @@ struct Solver::Impl {
   BodyEntry& body_entry(int body);
   const BodyEntry& body_entry(int body) const;
   std::uint64_t rigid_bytes() const;
+
+  // fracture_stage.cpp
+  void enable_fracture(const Setup& setup, const std::vector<int>& body_of_setup);
+  std::vector<float> binding_energies(const BreakableBody& body) const;
+  void fracture_layout(const std::vector<float>& dx, const std::vector<float>& dy, const std::vector<float>& dz);
+  void fracture_load(double dt);
+  void fracture_test();
+  void retire_body(int body);
+  std::uint64_t fracture_bytes() const;
 
   int back() const { return 1 - front; }
 

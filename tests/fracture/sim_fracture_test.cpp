@@ -1,0 +1,179 @@
+// Fracture in the simulator (docs/scene.md "Fracture"): a breakable wall on a floor
+// hit by a block of water. A gentle stream never breaks it, a strong impact does;
+// a weaker material breaks at least as much and no later; voxels and mass are
+// conserved exactly; fragments near the impact are smaller; max_chunks holds; the
+// anchored remainder stays put; the same scene gives the same fractures.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <gtest/gtest.h>
+
+#include "fracture_fixtures.h"
+#include "sim/solver.h"
+#include "test_support.h"
+
+namespace bw {
+namespace {
+
+struct Outcome {
+  std::vector<FractureEvent> events;
+  std::vector<sim::BodyInfo> infos;
+  std::vector<rigid::MassProperties> masses;
+  BodyStates states;
+  std::int64_t most_active = 0;  // largest number of active bodies after any step
+  double first = -1;             // time of the first fracture
+};
+
+Outcome run_scene(const std::string& text, double end) {
+  test::TempDir dir;
+  test::write_fracture_solids(dir.file(""));
+  sim::Solver solver(test::prepare_text(dir.file(""), text), test::shared_context());
+  Outcome out;
+  while (solver.time() < end) {
+    solver.step(end);
+    std::int64_t active = 0;
+    for (int b = 0; b < solver.body_count(); ++b) active += solver.body_info(b).active ? 1 : 0;
+    out.most_active = std::max(out.most_active, active);
+    if (out.first < 0 && !solver.fracture_events().empty()) out.first = solver.time();
+  }
+  out.events = solver.fracture_events();
+  for (int b = 0; b < solver.body_count(); ++b) {
+    out.infos.push_back(solver.body_info(b));
+    out.masses.push_back(solver.body(b).mass());
+  }
+  out.states = solver.body_states();
+  return out;
+}
+
+std::size_t fragments(const Outcome& o) {
+  std::size_t n = 0;
+  for (const sim::BodyInfo& i : o.infos) n += i.active && i.parent >= 0 ? 1 : 0;
+  return n;
+}
+
+constexpr double kStrong = 10.0;   // m/s
+constexpr double kGentle = 1.0;
+constexpr double kEnd = 0.04;      // s: the block hits the wall at 8 ms
+
+const Outcome& strong_wall() {
+  static const Outcome o = run_scene(test::fracture_scene(kStrong, 0.97, kEnd), kEnd);
+  return o;
+}
+
+TEST(Fracture, GentleStreamNeverBreaksTheWall) {
+  // 1 m/s, started 2 cm before the wall: it runs against it for 80 ms.
+  const Outcome o = run_scene(test::fracture_scene(kGentle, 0.97, 0.1, "", 0.02), 0.1);
+  EXPECT_TRUE(o.events.empty());
+  EXPECT_EQ(o.infos.size(), 1u);
+}
+
+TEST(Fracture, StrongImpactBreaksTheWallIntoFragments) {
+  const Outcome& o = strong_wall();
+  ASSERT_FALSE(o.events.empty());
+  EXPECT_GE(fragments(o), 2u);
+  EXPECT_GT(o.first, 0.005);
+  for (const FractureEvent& e : o.events) {
+    EXPECT_GE(e.seeds.size(), 2u);
+    EXPECT_EQ(e.child_body.size(), e.child_seed.size());
+    EXPECT_GE(e.child_body.size(), 2u);
+  }
+}
+
+TEST(Fracture, VoxelsAndMassAreConservedExactly) {
+  const Outcome& o = strong_wall();
+  const double voxel_mass = rigid::voxel_mass_properties({Vec3d::Zero()}, test::kWallSpacing, test::kWallDensity).mass;
+  std::int64_t voxels = 0;
+  for (std::size_t b = 0; b < o.infos.size(); ++b) {
+    // Every body's mass is its voxels' (voxel_mass_properties: count x voxel mass).
+    EXPECT_EQ(o.masses[b].mass, voxel_mass * o.infos[b].voxels);
+    if (o.infos[b].active) voxels += o.infos[b].voxels;
+  }
+  EXPECT_EQ(voxels, test::kWallVoxels);
+  // Each event hands all of its parent's voxels to its children.
+  for (const FractureEvent& e : o.events) {
+    std::int64_t children = 0;
+    for (const std::int32_t c : e.child_body) children += o.infos[static_cast<std::size_t>(c)].voxels;
+    EXPECT_EQ(children, o.infos[static_cast<std::size_t>(e.parent)].voxels);
+  }
+}
+
+TEST(Fracture, FragmentsNearTheImpactAreSmaller) {
+  const Outcome& o = strong_wall();
+  struct Piece {
+    double distance;
+    int voxels;
+  };
+  std::vector<Piece> pieces;
+  for (std::size_t b = 0; b < o.infos.size(); ++b)
+    if (o.infos[b].active && o.infos[b].parent >= 0)
+      pieces.push_back({(o.masses[b].center - test::impact_point()).norm(), o.infos[b].voxels});
+  ASSERT_GE(pieces.size(), 4u);
+  std::sort(pieces.begin(), pieces.end(), [](const Piece& a, const Piece& b) { return a.distance < b.distance; });
+  const std::size_t half = pieces.size() / 2;
+  double near = 0, far = 0;
+  for (std::size_t i = 0; i < half; ++i) near += pieces[i].voxels;
+  for (std::size_t i = pieces.size() - half; i < pieces.size(); ++i) far += pieces[i].voxels;
+  EXPECT_LT(near / half, far / half) << pieces.size() << " fragments";
+}
+
+TEST(Fracture, AnchoredRemainderStaysFixed) {
+  const Outcome& o = strong_wall();
+  int fixed = 0;
+  for (std::size_t k = 0; k < o.states.id.size(); ++k) {
+    const auto b = static_cast<std::size_t>(o.states.id[k]);
+    if (!o.infos[b].fixed) continue;
+    ++fixed;
+    // Where it was made: its reference configuration.
+    EXPECT_LT((o.states.position[k] - o.masses[b].center).norm(), 1e-12);
+    EXPECT_EQ(o.states.linear_velocity[k], Vec3d::Zero());
+  }
+  EXPECT_GE(fixed, 1);
+  // And some fragments are free.
+  int free = 0;
+  for (const sim::BodyInfo& i : o.infos) free += i.active && !i.fixed ? 1 : 0;
+  EXPECT_GE(free, 1);
+}
+
+TEST(Fracture, WeakerMaterialBreaksAtLeastAsMuchAndNoLater) {
+  const Outcome& strong = strong_wall();
+  const Outcome weak = run_scene(test::fracture_scene(kStrong, 0.45, kEnd), kEnd);
+  ASSERT_GE(weak.first, 0);
+  EXPECT_LE(weak.first, strong.first);
+  EXPECT_GE(fragments(weak), fragments(strong));
+}
+
+TEST(Fracture, CalibrationFragilePlateBreaksWhereTheWallHolds) {
+  // docs/scene.md "Fracture": at 0.02 m the wall (frc 0.97) holds up to 4 m/s and
+  // breaks from 5 m/s; the fragile plate's material (0.45) breaks at 4 m/s.
+  const Outcome wall = run_scene(test::fracture_scene(4.0, 0.97, 0.05), 0.05);
+  const Outcome plate = run_scene(test::fracture_scene(4.0, 0.45, 0.05), 0.05);
+  EXPECT_TRUE(wall.events.empty());
+  EXPECT_FALSE(plate.events.empty());
+}
+
+TEST(Fracture, MaxChunksIsNeverExceeded) {
+  const Outcome o = run_scene(test::fracture_scene(kStrong, 0.45, kEnd, "[fracture]\nmax_chunks = 3\n"), kEnd);
+  EXPECT_FALSE(o.events.empty());
+  EXPECT_LE(o.most_active, 3);
+  EXPECT_LE(strong_wall().most_active, 64);
+}
+
+TEST(Fracture, SameSceneSameFractures) {
+  const Outcome& a = strong_wall();
+  const Outcome b = run_scene(test::fracture_scene(kStrong, 0.97, kEnd), kEnd);
+  ASSERT_EQ(a.events.size(), b.events.size());
+  for (std::size_t e = 0; e < a.events.size(); ++e) {
+    EXPECT_EQ(a.events[e].time, b.events[e].time);
+    EXPECT_EQ(a.events[e].seeds, b.events[e].seeds);
+    EXPECT_EQ(a.events[e].child_body, b.events[e].child_body);
+  }
+  ASSERT_EQ(a.states.id, b.states.id);
+  for (std::size_t k = 0; k < a.states.id.size(); ++k) {
+    EXPECT_EQ(a.states.position[k], b.states.position[k]);
+    EXPECT_EQ(a.states.linear_velocity[k], b.states.linear_velocity[k]);
+  }
+}
+
+}  // namespace
+}  // namespace bw
