@@ -62,11 +62,12 @@ class CellMap {
 
 CellIndex offset(const CellIndex& c, int dx, int dy, int dz) { return {c[0] + dx, c[1] + dy, c[2] + dz}; }
 
-// Runs body(begin, end) over [0, n) in contiguous slices, one per thread.
+// Runs body(begin, end) over [0, n) in contiguous slices, one per thread (at most
+// one per `grain` items).
 template <class F>
-void parallel_slices(std::size_t n, int threads, F body) {
+void parallel_slices(std::size_t n, int threads, F body, std::size_t grain = 4096) {
   const int t = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const std::size_t count = std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(t), n / 4096 + 1));
+  const std::size_t count = std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(t), n / grain + 1));
   if (count == 1) {
     body(std::size_t{0}, n);
     return;
@@ -83,21 +84,59 @@ void parallel_slices(std::size_t n, int threads, F body) {
 
 std::vector<std::int32_t> nearest_seeds(const std::vector<Vec3d>& centers, const std::vector<Vec3d>& seeds,
                                         int threads) {
-  std::vector<std::int32_t> label(centers.size(), -1);
-  if (seeds.empty()) return label;
-  // Seeds as floats in one array would lose ties; double keeps them exact.
-  parallel_slices(centers.size(), threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) {
-      const Vec3d& c = centers[v];
-      double best = std::numeric_limits<double>::infinity();
-      std::int32_t which = -1;
-      for (std::size_t s = 0; s < seeds.size(); ++s) {
-        const double d = (seeds[s] - c).squaredNorm();
-        if (d < best) best = d, which = static_cast<std::int32_t>(s);
+  const std::size_t n = centers.size();
+  std::vector<std::int32_t> label(n, -1);
+  if (seeds.empty() || n == 0) return label;
+  // Centres in blocks of about kBlock of them; per block, only the seeds that can be
+  // nearest to a point of its box (nearer to the box than the least farthest-corner
+  // distance of any seed) are compared. Candidates keep their index order, so a tie
+  // goes to the lower seed index as in a plain search.
+  constexpr double kBlock = 512;
+  Vec3d lo = centers[0], hi = centers[0];
+  for (const Vec3d& c : centers) lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
+  const Vec3d extent = (hi - lo).cwiseMax(Vec3d::Constant(1e-9));
+  const double edge = std::max(std::cbrt(extent.prod() * kBlock / static_cast<double>(n)), extent.maxCoeff() / 256);
+  std::vector<std::pair<std::int64_t, std::int32_t>> keyed(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    const Eigen::Array3i c = ((centers[v] - lo).array() / edge).floor().cast<int>();
+    keyed[v] = {(std::int64_t(c.z()) * 1024 + c.y()) * 1024 + c.x(), static_cast<std::int32_t>(v)};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<std::size_t> group{0};
+  for (std::size_t i = 1; i < n; ++i)
+    if (keyed[i].first != keyed[i - 1].first) group.push_back(i);
+  group.push_back(n);
+  parallel_slices(group.size() - 1, threads, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::uint32_t> candidates;
+    for (std::size_t g = begin; g < end; ++g) {
+      Vec3d bmin = centers[static_cast<std::size_t>(keyed[group[g]].second)], bmax = bmin;
+      for (std::size_t i = group[g]; i < group[g + 1]; ++i) {
+        const Vec3d& c = centers[static_cast<std::size_t>(keyed[i].second)];
+        bmin = bmin.cwiseMin(c), bmax = bmax.cwiseMax(c);
       }
-      label[v] = which;
+      double bound = std::numeric_limits<double>::infinity();
+      for (const Vec3d& q : seeds) {
+        const Vec3d far = (q - bmin).cwiseAbs().cwiseMax((q - bmax).cwiseAbs());
+        bound = std::min(bound, far.squaredNorm());
+      }
+      candidates.clear();
+      for (std::size_t k = 0; k < seeds.size(); ++k) {
+        const Vec3d near = (bmin - seeds[k]).cwiseMax(Vec3d::Zero()) + (seeds[k] - bmax).cwiseMax(Vec3d::Zero());
+        if (near.squaredNorm() <= bound) candidates.push_back(static_cast<std::uint32_t>(k));
+      }
+      for (std::size_t i = group[g]; i < group[g + 1]; ++i) {
+        const auto v = static_cast<std::size_t>(keyed[i].second);
+        const Vec3d& c = centers[v];
+        double best = std::numeric_limits<double>::infinity();
+        std::int32_t which = -1;
+        for (const std::uint32_t k : candidates) {
+          const double d = (seeds[k] - c).squaredNorm();
+          if (d < best) best = d, which = static_cast<std::int32_t>(k);
+        }
+        label[v] = which;
+      }
     }
-  });
+  }, 8);
   return label;
 }
 
@@ -182,6 +221,7 @@ std::vector<Fragment> split(const Piece& piece, const std::vector<Vec3d>& seeds,
   for (std::size_t i = 0; i < piece.particles.size(); ++i) {
     if (pv[i] < 0) continue;
     const auto v = static_cast<std::size_t>(pv[i]);
+    out[static_cast<std::size_t>(frag[v])].source.push_back(static_cast<std::int32_t>(i));
     Piece& p = out[static_cast<std::size_t>(frag[v])].piece;
     p.particles.push_back(piece.particles[i]);
     p.normals.push_back(piece.normals[i]);
@@ -200,6 +240,7 @@ std::vector<Fragment> split(const Piece& piece, const std::vector<Vec3d>& seeds,
       ++faces;
     }
     if (faces == 0 || has_particle[v]) continue;
+    out[static_cast<std::size_t>(frag[v])].source.push_back(-1);
     Piece& p = out[static_cast<std::size_t>(frag[v])].piece;
     const double length = sum.norm();
     p.particles.push_back(piece.centers[v]);
@@ -218,30 +259,73 @@ std::vector<Fragment> split(const Piece& piece, const std::vector<Vec3d>& seeds,
 }
 
 std::vector<double> bond_counts(const std::vector<Vec3d>& particles, double spacing, double h) {
-  std::unordered_map<std::int64_t, std::vector<std::int32_t>> cells;
-  auto coords = [&](const Vec3d& p) { return Eigen::Array3i((p.array() / h).floor().cast<int>()); };
+  // Particles sorted into cells of edge h; each cell looks its 27 neighbours up once.
+  const std::size_t n = particles.size();
+  std::vector<double> out(n, 0.0);
+  if (n == 0) return out;
   auto key = [](const Eigen::Array3i& c) {
     constexpr std::int64_t kOffset = 1 << 20;
-    return ((c.z() + kOffset) << 42) | ((c.y() + kOffset) << 21) | (c.x() + kOffset);
+    return ((std::int64_t(c.z()) + kOffset) << 42) | ((std::int64_t(c.y()) + kOffset) << 21) | (std::int64_t(c.x()) + kOffset);
   };
-  for (std::size_t i = 0; i < particles.size(); ++i) cells[key(coords(particles[i]))].push_back(static_cast<std::int32_t>(i));
+  std::vector<std::pair<std::int64_t, std::int32_t>> keyed(n);
+  for (std::size_t i = 0; i < n; ++i)
+    keyed[i] = {key((particles[i].array() / h).floor().cast<int>()), static_cast<std::int32_t>(i)};
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<std::int64_t> cell_keys;
+  std::vector<std::size_t> cell_first;
+  for (std::size_t i = 0; i < n; ++i)
+    if (i == 0 || keyed[i].first != keyed[i - 1].first) cell_keys.push_back(keyed[i].first), cell_first.push_back(i);
+  cell_first.push_back(n);
   const double norm = 15.0 / (std::numbers::pi * std::pow(h, 6)) * spacing * spacing * spacing;
-  std::vector<double> out(particles.size(), 0.0);
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    const Eigen::Array3i c = coords(particles[i]);
-    double sum = 0;
+  const double h2 = h * h;
+  for (std::size_t c = 0; c < cell_keys.size(); ++c) {
+    const std::int32_t i0 = keyed[cell_first[c]].second;
+    const Eigen::Array3i cc = (particles[static_cast<std::size_t>(i0)].array() / h).floor().cast<int>();
+    std::array<std::pair<std::size_t, std::size_t>, 27> ranges{};
+    int nr = 0;
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
-          const auto it = cells.find(key(c + Eigen::Array3i(dx, dy, dz)));
-          if (it == cells.end()) continue;
-          for (const std::int32_t j : it->second) {
-            const double r = (particles[static_cast<std::size_t>(j)] - particles[i]).norm();
-            if (r < h) sum += (h - r) * (h - r) * (h - r);
+          const std::int64_t k = key(cc + Eigen::Array3i(dx, dy, dz));
+          const auto it = std::lower_bound(cell_keys.begin(), cell_keys.end(), k);
+          if (it == cell_keys.end() || *it != k) continue;
+          const auto m = static_cast<std::size_t>(it - cell_keys.begin());
+          ranges[static_cast<std::size_t>(nr++)] = {cell_first[m], cell_first[m + 1]};
+        }
+    for (std::size_t a = cell_first[c]; a < cell_first[c + 1]; ++a) {
+      const std::size_t i = static_cast<std::size_t>(keyed[a].second);
+      const Vec3d& x = particles[i];
+      double sum = 0;
+      for (int r = 0; r < nr; ++r)
+        for (std::size_t b = ranges[static_cast<std::size_t>(r)].first; b < ranges[static_cast<std::size_t>(r)].second; ++b) {
+          const double r2 = (particles[static_cast<std::size_t>(keyed[b].second)] - x).squaredNorm();
+          if (r2 < h2) {
+            const double q = h - std::sqrt(r2);
+            sum += q * q * q;
           }
         }
-    out[i] = norm * sum;
+      out[i] = norm * sum;
+    }
   }
+  return out;
+}
+
+std::vector<std::vector<double>> fragment_bond_counts(const std::vector<Fragment>& fragments, double spacing, double h,
+                                                      int threads) {
+  std::vector<std::vector<double>> out(fragments.size());
+  std::size_t total = 0;
+  for (const Fragment& f : fragments) total += f.piece.particles.size();
+  // Interleaved by fragment so that both threads get large and small ones.
+  const int t = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const std::size_t count = std::min<std::size_t>(static_cast<std::size_t>(t), total / 4096 + 1);
+  auto work = [&](std::size_t first) {
+    for (std::size_t f = first; f < fragments.size(); f += count)
+      out[f] = bond_counts(fragments[f].piece.particles, spacing, h);
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t k = 1; k < count; ++k) pool.emplace_back(work, k);
+  work(0);
+  for (auto& th : pool) th.join();
   return out;
 }
 

@@ -39,6 +39,7 @@ struct Fragment {
   Piece piece;
   rigid::MassProperties mass;
   bool anchored = false;                // holds an anchor voxel
+  std::vector<std::int32_t> source;     // per particle: the parent's particle it was, -1 on a crack face
 };
 
 // Per voxel centre, the index of the nearest seed (ties: the lower index).
@@ -55,6 +56,10 @@ std::vector<Fragment> split(const Piece& piece, const std::vector<Vec3d>& seeds,
 // included): the kernel-weighted number of its bonds (0.60 alone at h = 2 spacings,
 // 1.24 inside a full cubic lattice).
 std::vector<double> bond_counts(const std::vector<Vec3d>& particles, double spacing, double h);
+
+// bond_counts of each fragment's particles, fragments shared out over `threads`.
+std::vector<std::vector<double>> fragment_bond_counts(const std::vector<Fragment>& fragments, double spacing, double h,
+                                                      int threads = 0);
 
 // Per particle, the voxel it belongs to: the voxel of its own cell, else the nearest
 // voxel among the 26 cells around it (ties: the lower index), else the nearest voxel.

@@ -59,15 +59,15 @@ void Solver::Impl::enable_fracture(const Setup& setup, const std::vector<int>& b
     tb.piece.particle_cells = b.particle_cells;
     fs.bodies.push_back(std::move(tb));
   }
-  for (BreakableBody& tb : fs.bodies) tb.binding = binding_energies(tb);
+  for (BreakableBody& tb : fs.bodies)
+    tb.binding = binding_energies(tb.frc, fracture::bond_counts(tb.piece.particles, tb.voxel_size, params.h));
   fs.layout_dirty = true;
 }
 
 // E_r,i = E_sigma x (its kernel-weighted bond count), E_sigma = frc x energy_scale x
 // spacing (J).
-std::vector<float> Solver::Impl::binding_energies(const BreakableBody& tb) const {
-  const double sigma = tb.frc * fracture->settings.energy_scale * params.spacing;
-  const std::vector<double> bonds = fracture::bond_counts(tb.piece.particles, tb.voxel_size, params.h);
+std::vector<float> Solver::Impl::binding_energies(double frc, const std::vector<double>& bonds) const {
+  const double sigma = frc * fracture->settings.energy_scale * params.spacing;
   std::vector<float> out(bonds.size());
   for (std::size_t i = 0; i < bonds.size(); ++i) out[i] = static_cast<float>(sigma * bonds[i]);
   return out;
@@ -195,13 +195,14 @@ void Solver::Impl::fracture_test() {
     const rigid::Body parent = pe.body;
     const bool parent_fixed = pe.info.fixed;
     const std::string parent_name = pe.info.name;
+    const std::vector<float> parent_psi = pe.psi_dirty ? std::vector<float>{} : pe.psi;
     const std::int32_t solid = pe.info.solid;
     const double spacing = pe.spacing, friction = pe.friction, restitution = pe.restitution;
     FractureEvent event;
     event.time = this->t;
     event.parent = tb.body;
     event.seeds = seeds;
-    // Leftover energy of each seed, shared by its fragments by voxels, along the load.
+    const std::vector<std::vector<double>> bonds_of = fracture::fragment_bond_counts(fragments, tb.voxel_size, params.h);
     std::vector<std::size_t> seed_voxels(seeds.size(), 0);
     for (const fracture::Fragment& fr : fragments) seed_voxels[static_cast<std::size_t>(fr.seed)] += fr.piece.size();
     for (std::size_t c = 0; c < fragments.size(); ++c) {
@@ -221,6 +222,8 @@ void Solver::Impl::fracture_test() {
       spec.fixed = (parent_fixed && fr.anchored);
       rigid::BodyState st = parent.state();
       st.position = parent.to_world(fr.mass.center);
+      // Fixed, or moving with the parent plus, along the load, the energy its seed
+      // received beyond its binding energy (shared by the seed's fragments by voxels).
       if (spec.fixed) {
         st.linear_velocity = st.angular_velocity = Vec3d::Zero();
       } else {
@@ -230,9 +233,21 @@ void Solver::Impl::fracture_test() {
         const Vec3d load = -Vec3d(dx[sp], dy[sp], dz[sp]);
         const double share = left * double(fr.piece.size()) / double(seed_voxels[static_cast<std::size_t>(fr.seed)]);
         if (load.norm() > 0 && share > 0) st.linear_velocity += std::sqrt(2 * share / fr.mass.mass) * load.normalized();
-          }
+      }
       spec.state = st;
       const int child = add_body(spec);
+      // Psi_b handed over (method.md 4): the parent's particles keep theirs, so that the
+      // fluid at the surface feels the same wall as before the crack; only the crack
+      // faces' particles get their own, from their fragment's neighbours.
+      const std::vector<double>& bonds = bonds_of[c];
+      BodyEntry& ce = body_entry(child);
+      const double volume = tb.voxel_size * tb.voxel_size * tb.voxel_size;
+      for (std::size_t k = 0; k < ce.psi.size(); ++k) {
+        const std::int32_t src = fr.source[k];
+        ce.psi[k] = src >= 0 && !parent_psi.empty() ? parent_psi[static_cast<std::size_t>(src)]
+                                                   : static_cast<float>(params.rho0 * volume / bonds[k]);
+      }
+      ce.psi_dirty = false;
       event.child_body.push_back(child);
       event.child_seed.push_back(fr.seed);
       event.child_component.push_back(fr.component);
@@ -242,8 +257,8 @@ void Solver::Impl::fracture_test() {
       ct.density = tb.density;
       ct.voxel_size = tb.voxel_size;
       ct.piece = std::move(fr.piece);
+      ct.binding = binding_energies(ct.frc, bonds);
       next.push_back(std::move(ct));
-      next.back().binding = binding_energies(next.back());
     }
     retire_body(tb.body);
     active += static_cast<std::int64_t>(fragments.size()) - 1;

@@ -169,7 +169,7 @@ struct Solver::Impl {
 
   // fracture_stage.cpp
   void enable_fracture(const Setup& setup, const std::vector<int>& body_of_setup);
-  std::vector<float> binding_energies(const BreakableBody& body) const;
+  std::vector<float> binding_energies(double frc, const std::vector<double>& bonds) const;
   void fracture_layout(const std::vector<float>& dx, const std::vector<float>& dy, const std::vector<float>& dz);
   void fracture_load(double dt);
   void fracture_test();

@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
   const double t_split = clock.seconds();
   clock = bw::Stopwatch();
   std::size_t particles = 0;
-  for (const auto& f : fragments) particles += bw::fracture::bond_counts(f.piece.particles, s, 2 * s).size();
+  for (const auto& b : bw::fracture::fragment_bond_counts(fragments, s, 2 * s, threads)) particles += b.size();
   const double t_bonds = clock.seconds();
   const double total = t_seeds + t_voxels + t_split + t_bonds;
   std::printf("fracture: %zu voxels, %zu particles, %zu seeds, %d threads\n", piece.size(), piece.particles.size(),

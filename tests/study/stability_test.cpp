@@ -65,7 +65,7 @@ TEST_P(Stability, Case) {
   for (std::size_t i = 0; i < c.solids.size(); ++i) {
     const std::string particles = dir.file(c.solids[i] + ".h5");
     const auto sampled = test::run(test::tool("bw-sample") + " " + BW_SOURCE_DIR + "/examples/meshes/" + c.solids[i] +
-                                   ".obj -o " + particles + " --spacing " + c.spacing);
+                                   ".obj -o " + particles + " --spacing " + c.spacing + " --volume");
     ASSERT_EQ(sampled.exit_code, 0) << sampled.err;
     sets += " --set 'solid[" + std::to_string(i) + "].particles=" + particles + "'";
   }
