@@ -73,11 +73,14 @@ int main(int argc, char** argv) {
     mesh::export_mesh(sealed_box({0, 0, 0}, {0.6, 0.1, 1.0}, 0.04), dir + "/sealed.obj");
     mesh::export_mesh(mesh::box({0, 0, 0}, {0.04, 0.1, 0.2}), dir + "/baffle.obj");
     mesh::export_mesh(mesh::box({0, 0, 0}, {0.01, 0.1, 0.2}), dir + "/sheet.obj");
-    // Scene 4: a flume for the flood among four houses: cavity 8 x 6.8 x 1.6 m, open
+    // Scene 4: a flume for the flood among four houses: cavity 8 x 7 x 1.6 m, open
     // at the top, walls 0.4 m thick, so that its inner faces lie on cell planes of
     // bw-sample's grid at the scene's spacings (0.1, 0.08, 0.05, 0.04, 0.025, 0.02,
-    // 0.0125 m) and the flood's block and the houses sit on its floor.
-    mesh::export_mesh(mesh::open_box({0, 0, 0}, {8.0, 6.8, 1.6}, 0.4), dir + "/flume.obj");
+    // 0.0125 m) and the flood's blocks and the houses sit on its floor; and the
+    // dividers that part it into four lanes of 1.6 m, one house in each, so that
+    // every house meets the same flood: 8 m long, 0.2 m thick, as high as the flume.
+    mesh::export_mesh(mesh::open_box({0, 0, 0}, {8.0, 7.0, 1.6}, 0.4), dir + "/flume.obj");
+    mesh::export_mesh(mesh::box({0, 0, 0}, {8.0, 0.2, 1.6}), dir + "/divider.obj");
     // A crate, 0.1 m cube, for the floating-body scene.
     mesh::export_mesh(mesh::box({0, 0, 0}, {0.1, 0.1, 0.1}), dir + "/crate.obj");
     // Scene 3: a valley 8 m long falling 0.12 m per metre along x, with parabolic
