@@ -286,6 +286,7 @@ void Solver::Impl::fracture_test() {
   fracture_layout(nx, ny, nz);
 }
 
+// A body that fracture replaced by its fragments: its row stays, its particles go.
 void Solver::Impl::retire_body(int body) {
   BodyEntry& e = body_entry(body);
   e.info.active = false;

@@ -441,17 +441,7 @@ void Solver::set_body_fixed(int body, bool fixed) {
   impl_->boundary_dirty = true;
 }
 
-void Solver::retire_body(int body) {
-  BodyEntry& e = impl_->body_entry(body);
-  e.info.active = false;
-  e.info.particles = 0;
-  e.reference.clear();
-  e.reference_normals.clear();
-  e.flatness.clear();
-  e.psi.clear();
-  impl_->rigid->layout_dirty = true;
-  impl_->boundary_dirty = true;
-}
+void Solver::retire_body(int body) { impl_->retire_body(body); }
 
 int Solver::body_count() const { return impl_->rigid ? static_cast<int>(impl_->rigid->bodies.size()) : 0; }
 const BodyInfo& Solver::body_info(int body) const { return impl_->body_entry(body).info; }
