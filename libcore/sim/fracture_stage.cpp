@@ -223,7 +223,10 @@ void Solver::Impl::fracture_test() {
       rigid::BodyState st = parent.state();
       st.position = parent.to_world(fr.mass.center);
       // Fixed, or moving with the parent plus, along the load, the energy its seed
-      // received beyond its binding energy (shared by the seed's fragments by voxels).
+      // received beyond its binding energy (shared by the seed's fragments by voxels),
+      // but never faster than the scene's largest flow speed: the load energy is
+      // reckoned from the fluid's velocity changes and is not taken from the fluid, and
+      // water cannot throw a piece faster than it flows itself.
       if (spec.fixed) {
         st.linear_velocity = st.angular_velocity = Vec3d::Zero();
       } else {
@@ -232,7 +235,8 @@ void Solver::Impl::fracture_test() {
         const double left = std::max(0.0, double(energy[sp]) - double(tb.binding[sp - tb.slot]));
         const Vec3d load = -Vec3d(dx[sp], dy[sp], dz[sp]);
         const double share = left * double(fr.piece.size()) / double(seed_voxels[static_cast<std::size_t>(fr.seed)]);
-        if (load.norm() > 0 && share > 0) st.linear_velocity += std::sqrt(2 * share / fr.mass.mass) * load.normalized();
+        if (load.norm() > 0 && share > 0)
+          st.linear_velocity += std::min(std::sqrt(2 * share / fr.mass.mass), params.scene_speed) * load.normalized();
       }
       spec.state = st;
       const int child = add_body(spec);
