@@ -183,7 +183,7 @@ StabilityReport check_stability(const std::string& run_dir, const StabilityLimit
   report.run = read_indicators(run_dir);
   const RunRecord run = read_run(run_dir + "/run.h5");
   const scene::Scene scene = scene::parse_scene(run.scene_text, run.scene_path);
-  const double spacing = parameter(run, "spacing", run_dir + "/run.h5");
+  const double spacing = report.run.spacing;
 
   // The solids' meshes in the world, with their bounding boxes for a quick rejection.
   std::vector<TriMesh> solids;
