@@ -26,10 +26,60 @@
 // step) this factor keeps c dt / m_eff <= 1. A larger one made a box resting on a
 // floor chatter: the drag overshot, flipping sign every step at Coulomb's limit.
 #define BW_TANGENT_DAMPING 0.5f
-// A face normal serves a pair only while the pair lies at least this fraction of the
-// contact distance along it (a box's edge resting on a floor lies a whole contact
-// distance above it; fragments side by side across a crack lie beside each other).
-#define BW_FACE_DEPTH 0.5f
+// A pair's spring energy (boundary_forces) is measured along a face normal while the
+// touching particle lies at least BW_FACE_FAR of the contact distance d0 in front of
+// the face, along the line between the particles while it lies less than
+// BW_FACE_NEAR in front (beside the face: fragments side by side across a crack, a
+// face beside an edge in its own plane, which a face normal would measure a whole
+// spacing deep), and is blended smoothly in between, so that the energy has no jump
+// for the forces to miss. A box's edge resting on a floor lies a whole contact
+// distance above it; a face landing at the scene's largest speed goes about 0.25
+// spacings deep, still above BW_FACE_FAR.
+#define BW_FACE_NEAR 0.3f
+#define BW_FACE_FAR 0.6f
+
+// The spring energy of a contact pair and its derivatives (boundary_forces), for a
+// touching particle at r from a particle on a face of unit normal n (d = r.n in front
+// of it, l^2 = |r|^2 - d^2 across), or from any particle with face = false:
+//   U = beta(d) U_face + (1 - beta(d)) U_line,
+//   U_face = kA/2 a^2 (d0 - d)^2,  a = max(0, 1 - l^2 / R^2)  (the face's patch),
+//   U_line = kA/2 (d0 - |r|)^2,
+// each only while positive, beta the smoothstep from BW_FACE_NEAR d0 to BW_FACE_FAR d0.
+// U depends on r only through |r|^2 and d, so the force on the touching particle,
+//   F = -dU/dd n - 2 dU/d|r|^2 r,
+// with its opposite on the face's particle, both acting at the touching particle, is
+// the exact gradient of U also as the face turns with its body: the pair's work is
+// the change of U, and its torques cancel. Also returns the pair's weight
+// beta a^2 + (1 - beta) (of kA: the share of the pair in its owners' contact) and its
+// depth beta (d0 - d) + (1 - beta) (d0 - |r|) (negative when apart).
+float3 bw_contact_spring(float3 r, float3 n, bool face, float d0, float reach2, float kA, float* weight, float* depth) {
+  const float r2 = dot(r, r);
+  const float rl = sqrt(r2);
+  const float dc = d0 - rl;
+  const float du_line = dc > 0.0f ? -0.5f * kA * dc / rl : 0.0f;  // dU_line / d|r|^2
+  if (!face) {
+    *weight = 1.0f;
+    *depth = dc;
+    return -2.0f * du_line * r;
+  }
+  const float d = dot(r, n);
+  const float df = d0 - d;
+  const float a = fmax(1.0f - fmax(r2 - d * d, 0.0f) / reach2, 0.0f);
+  const bool on = df > 0.0f && a > 0.0f;
+  const float u_face = on ? 0.5f * kA * a * a * df * df : 0.0f;
+  const float du_face_dd = on ? kA * a * df * (2.0f * d * df / reach2 - a) : 0.0f;
+  const float du_face_dr2 = on ? -kA * a * df * df / reach2 : 0.0f;
+  const float u_line = dc > 0.0f ? 0.5f * kA * dc * dc : 0.0f;
+  const float width = (BW_FACE_FAR - BW_FACE_NEAR) * d0;
+  const float t = clamp((d - BW_FACE_NEAR * d0) / width, 0.0f, 1.0f);
+  const float beta = t * t * (3.0f - 2.0f * t);
+  const float dbeta = 6.0f * t * (1.0f - t) / width;
+  *weight = beta * a * a + (1.0f - beta);
+  *depth = beta * df + (1.0f - beta) * dc;
+  const float du_dd = dbeta * (u_face - u_line) + beta * du_face_dd;
+  const float du_dr2 = beta * du_face_dr2 + (1.0f - beta) * du_line;
+  return -du_dd * n - 2.0f * du_dr2 * r;
+}
 
 // World positions, velocities and normals of the bodies' boundary particles, master
 // indices first + k for k < count, from their reference arrays (r = x_ref - c_ref and
@@ -115,19 +165,18 @@ __kernel void boundary_psi_owners(SimParams P, uint nb, __global const uint* bst
 //   fluid neighbour j in fluid_integrate (bw_wall_contact replayed for j up to b, with
 //   j's velocity after the force update), over dt;
 // - contacts with the particles of other owners (method.md 5, "Ours"; rigid/contact.h):
-//   a spring-dashpot along the pair's normal n, never pulling, with Coulomb friction.
-//   n comes from the particles that lie on faces of their solids (below); the pair
-//   is at distance
-//   d along n, l across it; it pushes when d < d0 = the mean of the two owners'
-//   spacings, with weight w = (1 - l^2/R^2)^2 3 s_b s_o / (pi R^2) over the lateral
-//   reach R, so that a particle over a flat lattice of the other solid feels about one
-//   pair's stiffness wherever it lies. The pair's mass m is the reduced mass of the
-//   owners' contact masses (an owner's mass over the weight of its pairs at the last
-//   step, OwnerParams.inv_mass), so that a body feels k = M omega^2 and c = 2 zeta M
-//   omega in all: its bounce ends with the restitution and its depth under its
-//   weight is g / omega^2 however many of its particles touch. Every quantity is
-//   symmetric in the pair, so that the pair's forces are exact opposites; they act at
-//   the pair's midpoint, so that the pair's torques cancel too.
+//   a spring whose energy is bw_contact_spring's (measured along a face normal or
+//   the line between the particles, pushing when they are closer than d0 = the mean
+//   of the two owners' spacings, weighted over the lateral reach R so that a particle
+//   over a flat lattice of the other solid feels about one pair's stiffness wherever
+//   it lies), with a dashpot along the spring's force, never pulling, and Coulomb
+//   friction across it. The pair's mass m is the reduced mass of the owners' contact
+//   masses (an owner's mass over the weight of its pairs at the last step,
+//   OwnerParams.inv_mass), so that a body feels k = M omega^2 and c = 2 zeta M omega
+//   in all: its bounce ends with the restitution and its depth under its weight is
+//   g / omega^2 however many of its particles touch. Every quantity is symmetric in
+//   the pair, so that the pair's forces are exact opposites, and both act at one
+//   point, so that the pair's torques cancel too.
 // touching: the weights of the pairs within d0 plus the margin.
 // Forces are in N. All outputs are in master order. With dt < 0 only the contacts'
 // weights are counted (touching), nothing else is written.
@@ -210,65 +259,55 @@ __kernel void boundary_forces(SimParams P, ContactParams C, uint first, uint cou
         const float reach = fmin(C.reach * fmax(own.spacing, oth.spacing), sqrt(fmax(h2 - d0 * d0, 0.0f)));
         const float reach2 = reach * reach;
         if (r2 >= (d0 + C.margin) * (d0 + C.margin) + reach2 || !(r2 > 0.0f)) continue;
-        // The contact normal: where both particles lie on faces, the bisector of their
-        // normals (exact for parallel faces); where one does, its normal (a box's edge
-        // or corner on a floor is pushed straight up); elsewhere (edge on edge, corner
-        // on edge) the line between them. Edges' and corners' normals never serve:
-        // measured along them, a corner over an edge would seem a third of a spacing
-        // deep.
+        // Which particle's face serves (bw_contact_spring): where one lies on a face of
+        // its solid, that face; where both do, the face of the lower owner (a static
+        // solid's before a body's; for parallel faces either gives the same); where
+        // neither does (edge on edge, corner on edge), none. Edges' and corners' normals
+        // never serve: measured along them, a corner over an edge would seem a third of
+        // a spacing deep. The choice depends only on the pair, never on the step.
         const bool oface = bflat[o] >= BW_FACE_FLATNESS;
-        float nx, ny, nz;
-        if (oface && bface) {
-          nx = bnx[o] - nbx, ny = bny[o] - nby, nz = bnz[o] - nbz;
-        } else if (oface) {
-          nx = bnx[o], ny = bny[o], nz = bnz[o];
-        } else if (bface) {
-          nx = -nbx, ny = -nby, nz = -nbz;
-        } else {
-          nx = dx, ny = dy, nz = dz;
-        }
-        float m2 = nx * nx + ny * ny + nz * nz;
-        if (!(m2 > 0.0f)) continue;
-        float inv = 1.0f / sqrt(m2);
-        nx *= inv, ny *= inv, nz *= inv;
-        float d = dx * nx + dy * ny + dz * nz;
-        // Faces that do not face each other (two faces at right angles, side by side
-        // across a crack, or a face beside an edge in its own plane): a face normal
-        // would measure them a whole spacing deep; the line between them serves.
-        if (d < BW_FACE_DEPTH * d0 && (oface || bface)) {
-          nx = dx, ny = dy, nz = dz;
-          m2 = r2;
-          inv = 1.0f / sqrt(m2);
-          nx *= inv, ny *= inv, nz *= inv;
-          d = dx * nx + dy * ny + dz * nz;
-        }
-        const float l2 = r2 - d * d;
-        if (l2 >= reach2) continue;
-        const float delta = d0 - d;
-        const float a = 1.0f - l2 / reach2;
-        const float weight = a * a * 3.0f * own.spacing * oth.spacing / (BW_PI_F * reach2);
-        if (delta > -C.margin) pairs += weight;
-        if (delta <= 0.0f) continue;
-        if (dt < 0.0f) continue;
+        const bool use_o = oface && (!bface || other < owner);
+        const bool use_b = bface && !use_o;
+        const float3 rb = (float3)(dx, dy, dz);  // from o to b
         const float m = 1.0f / inv_mass;
+        const float kA = m * C.omega * C.omega * 3.0f * own.spacing * oth.spacing / (BW_PI_F * reach2);
+        float weight, depth;
+        // The spring's force on b, and the point it acts at relative to b (at the
+        // touching particle; at the midpoint for two particles off faces).
+        float3 fs, at;
+        if (use_o) {
+          fs = bw_contact_spring(rb, (float3)(bnx[o], bny[o], bnz[o]), true, d0, reach2, kA, &weight, &depth);
+          at = (float3)(0.0f);
+        } else if (use_b) {
+          fs = -bw_contact_spring(-rb, (float3)(nbx, nby, nbz), true, d0, reach2, kA, &weight, &depth);
+          at = -rb;
+        } else {
+          fs = bw_contact_spring(rb, rb, false, d0, reach2, kA, &weight, &depth);
+          at = -0.5f * rb;
+        }
+        const float area = 3.0f * own.spacing * oth.spacing / (BW_PI_F * reach2);
+        weight *= area;
+        if (depth > -C.margin) pairs += weight;
+        const float fs2 = dot(fs, fs);
+        if (dt < 0.0f || !(fs2 > 0.0f)) continue;
+        // The dashpot and friction along and across the spring's force.
+        const float3 n = fs * (1.0f / sqrt(fs2));
         const float zeta = fmin(own.damping, oth.damping);
-        const float rvx = vbx - bvx[o], rvy = vby - bvy[o], rvz = vbz - bvz[o];
-        const float vn = rvx * nx + rvy * ny + rvz * nz;
-        const float fn = weight * m * C.omega * (C.omega * delta - 2.0f * zeta * vn);
-        if (!(fn > 0.0f)) continue;
-        float ffx = fn * nx, ffy = fn * ny, ffz = fn * nz;
-        const float tvx = rvx - vn * nx, tvy = rvy - vn * ny, tvz = rvz - vn * nz;
-        const float vt = sqrt(tvx * tvx + tvy * tvy + tvz * tvz);
+        const float3 rv = (float3)(vbx - bvx[o], vby - bvy[o], vbz - bvz[o]);
+        const float vn = dot(rv, n);
+        const float fn = sqrt(fs2) - weight * 2.0f * zeta * m * C.omega * vn;
+        if (!(fn > 0.0f)) continue;  // never pulling
+        float3 f = fn * n;
+        const float3 tv = rv - vn * n;
+        const float vt = length(tv);
         if (vt > 0.0f) {
           // Coulomb's limit; below it a drag, so that slow sliding stops.
           const float ft = fmin(sqrt(own.friction * oth.friction) * fn, weight * BW_TANGENT_DAMPING * m * C.omega * vt);
-          ffx -= ft * tvx / vt, ffy -= ft * tvy / vt, ffz -= ft * tvz / vt;
+          f -= (ft / vt) * tv;
         }
-        cfx += ffx, cfy += ffy, cfz += ffz;
-        // at the midpoint, -d / 2 from b
-        ctx += -0.5f * (dy * ffz - dz * ffy);
-        cty += -0.5f * (dz * ffx - dx * ffz);
-        ctz += -0.5f * (dx * ffy - dy * ffx);
+        cfx += f.x, cfy += f.y, cfz += f.z;
+        const float3 tq = cross(at, f);
+        ctx += tq.x, cty += tq.y, ctz += tq.z;
       }
     }
   }
