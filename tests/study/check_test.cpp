@@ -6,9 +6,11 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <numbers>
 
 #include <gtest/gtest.h>
 
+#include "common/error.h"
 #include "io/frame_file.h"
 #include "io/particles_file.h"
 #include "io/run_file.h"
@@ -128,6 +130,71 @@ TEST(StabilityChecks, FindParticlesInSolidsOutsideTheDomainAndNotNumbers) {
   EXPECT_EQ(r.first_bad_frame, 1);
   EXPECT_EQ(r.leaks.size(), 2u) << "in solids, outside the domain";
   EXPECT_EQ(r.failures.size(), 1u) << "not a number";
+}
+
+// A breakable box (0.4 m, 64 voxels of 0.1 m) in the tank, broken at frame 1 into its
+// halves x < 0.5 and x > 0.5 (bodies 1 and 2), of which the second has flown 0.5 m up
+// and turned 90 degrees about z: added to a run.
+void add_broken_box(SyntheticRun& s) {
+  write_particles(sample::sample_mesh(mesh::box(Vec3d(0, 0, 0), Vec3d(0.4, 0.4, 0.4)), {0.1, true, "box", 1}),
+                  s.dir.file("box.h5"), "check test");
+  s.run.scene_text += "[[solid]]\nparticles = \"box.h5\"\nbreakable = true\ntranslation = [0.3, 0.3, 0.5]\n";
+  auto body = [](std::int32_t parent, std::int32_t voxels, const Vec3d& center) {
+    BodyRecord b;
+    b.name = parent < 0 ? "box" : "box." + std::to_string(voxels);
+    b.solid = 1;
+    b.parent = parent;
+    b.mass = 2400 * 1e-3 * voxels;
+    b.voxels = voxels;
+    b.reference_center = center;
+    return b;
+  };
+  s.run.bodies = {body(-1, 64, {0.5, 0.5, 0.7}), body(0, 32, {0.4, 0.5, 0.7}), body(0, 32, {0.6, 0.5, 0.7})};
+  FractureEvent e;
+  e.time = 0.05;
+  e.parent = 0;
+  e.seeds = {{0.41, 0.52, 0.73}, {0.62, 0.51, 0.72}};
+  e.child_body = {1, 2};
+  e.child_seed = {0, 1};
+  e.child_component = {0, 0};
+  s.run.fractures = {e};
+  s.add(kInCavity, 0, 10, 0.0);
+  s.frames.back().bodies.id = {0};
+  s.frames.back().bodies.position = {{0.5, 0.5, 0.7}};
+  s.frames.back().bodies.orientation = {Eigen::Quaterniond::Identity()};
+  s.frames.back().bodies.linear_velocity = s.frames.back().bodies.angular_velocity = {Vec3d::Zero()};
+  std::vector<Vec3d> points = kInCavity;
+  points.push_back({0.6, 0.5, 0.7});    // where the second half was: water now
+  points.push_back({0.6, 0.5, 1.2});    // in the second half, a spacing deep
+  points.push_back({0.7, 0.5, 1.3});    // in it too, at (0.6, 0.4, 0.8) of its reference configuration
+  points.push_back({0.6, 0.58, 1.2});   // against its face, 0.2 spacings deep: contact
+  points.push_back({0.4, 0.5, 0.7});    // in the first half, at its crack: a spacing deep
+  s.add(points, 0, 10, 0.0);
+  BodyStates& b = s.frames.back().bodies;
+  b.id = {1, 2};
+  b.position = {{0.4, 0.5, 0.7}, {0.6, 0.5, 1.2}};
+  b.orientation = {Eigen::Quaterniond::Identity(), Eigen::Quaterniond(Eigen::AngleAxisd(0.5 * std::numbers::pi, Vec3d::UnitZ()))};
+  b.linear_velocity = b.angular_velocity = {Vec3d::Zero(), Vec3d::Zero()};
+}
+
+TEST(StabilityChecks, FollowBodiesAndTheFragmentsOfTheirFractures) {
+  SyntheticRun s;
+  add_broken_box(s);
+  const study::StabilityReport r = study::check_stability(s.write(), {});
+  EXPECT_EQ(r.inside_solids, 3) << "in the halves a spacing deep; not where the second half was, not against its face";
+  EXPECT_NEAR(r.deepest, 1.0, 1e-5);
+  EXPECT_EQ(r.first_bad_frame, 1);
+}
+
+TEST(StabilityChecks, FragmentsThatSplittingCannotRebuildAreBadInput) {
+  SyntheticRun s;
+  add_broken_box(s);
+  s.run.bodies[2].voxels = 31;
+  EXPECT_THROW(study::check_stability(s.write(), {}), InputError);
+  SyntheticRun t;
+  add_broken_box(t);
+  t.run.fractures[0].child_component = {0, 1};
+  EXPECT_THROW(study::check_stability(t.write(), {}), InputError);
 }
 
 TEST(StabilityChecks, FindDensityErrorEnergyRiseLostParticlesAndStops) {

@@ -4,11 +4,13 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <unordered_map>
 
 #include <fmt/format.h>
 
 #include "analysis/measure.h"
 #include "common/error.h"
+#include "fracture/fracture.h"
 #include "io/frame_file.h"
 #include "io/particles_file.h"
 #include "io/run_file.h"
@@ -24,6 +26,109 @@ double parameter(const RunRecord& run, const std::string& name, const std::strin
 }
 
 double total_energy(const FrameStats& s) { return s.kinetic_energy + s.potential_energy + s.elastic_energy; }
+
+// The voxels of one body of a run: its root solid's sampling grid and placement, its
+// cells, and where they lie in the reference configuration.
+struct BodyVoxels {
+  const scene::Solid* solid = nullptr;
+  SampleGrid grid;
+  fracture::Piece piece;
+  Vec3d reference_center = Vec3d::Zero();
+  double radius = 0;  // of its voxels' centres around reference_center (m)
+  std::unordered_map<std::int64_t, std::int32_t> cells;
+
+  static std::int64_t key(const CellIndex& c) {
+    constexpr std::int64_t kOffset = 1 << 20;
+    return ((std::int64_t(c[2]) + kOffset) << 42) | ((std::int64_t(c[1]) + kOffset) << 21) | (std::int64_t(c[0]) + kOffset);
+  }
+  void index() {
+    cells.clear();
+    for (std::size_t v = 0; v < piece.cells.size(); ++v) cells[key(piece.cells[v])] = static_cast<std::int32_t>(v);
+    radius = 0;
+    for (const Vec3d& c : piece.centers) radius = std::max(radius, (c - reference_center).norm());
+  }
+  bool has(const CellIndex& c) const { return cells.count(key(c)) > 0; }
+  // How deep a reference-configuration point lies inside the union of the voxels'
+  // cubes (m): 0 outside, the distance to the nearest cell around its own that is not
+  // a voxel, at most one voxel edge.
+  double depth(const Vec3d& reference) const {
+    const double scale = solid->scale;
+    const Vec3d file = solid->rotation().conjugate() * (reference - solid->translation) / scale;
+    const Vec3d g = (file - grid.origin) / grid.spacing;
+    const CellIndex c{static_cast<std::int32_t>(std::floor(g.x())), static_cast<std::int32_t>(std::floor(g.y())),
+                      static_cast<std::int32_t>(std::floor(g.z()))};
+    if (!has(c)) return 0;
+    double best = 1;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          if (has({c[0] + dx, c[1] + dy, c[2] + dz})) continue;
+          // distance (in cells) from g to the cell c + (dx, dy, dz)
+          const Vec3d lo(c[0] + dx, c[1] + dy, c[2] + dz);
+          const Vec3d d = (lo - g).cwiseMax(Vec3d::Zero()) + (g - lo - Vec3d::Ones()).cwiseMax(Vec3d::Zero());
+          best = std::min(best, d.norm());
+        }
+    return best * grid.spacing * scale;
+  }
+};
+
+// The voxels of every body of a run, in the run's body order: a dynamic or breakable
+// solid's from its particles file, a fragment's by splitting its parent's as the
+// simulator did (fracture::split, with the seeds the run file recorded). Throws when
+// a body's voxel count does not match the run file's.
+std::vector<BodyVoxels> body_voxels(const RunRecord& run, const scene::Scene& scene, const std::string& where) {
+  std::vector<BodyVoxels> out(run.bodies.size());
+  std::vector<bool> known(run.bodies.size(), false);
+  for (std::size_t b = 0; b < run.bodies.size(); ++b) {
+    const BodyRecord& rec = run.bodies[b];
+    if (rec.parent >= 0) continue;
+    if (rec.solid < 0 || static_cast<std::size_t>(rec.solid) >= scene.solids.size())
+      fail_input("{}: body {} names solid {}, which the scene does not have", where, b, rec.solid);
+    BodyVoxels& bv = out[b];
+    bv.solid = &scene.solids[static_cast<std::size_t>(rec.solid)];
+    const SampledSolid sampled = read_particles(bv.solid->particles);
+    bv.grid = sampled.grid;
+    bv.piece.cells = sampled.voxels;
+    for (const Vec3d& c : sampled.voxel_positions()) bv.piece.centers.push_back(bv.solid->to_world(c));
+    for (const Vec3d& q : sampled.surface_positions()) {
+      bv.piece.particles.push_back(bv.solid->to_world(q));
+      bv.piece.normals.push_back(Vec3d::Zero());
+    }
+    bv.piece.particle_cells = sampled.surface;
+    known[b] = true;
+  }
+  for (const FractureEvent& e : run.fractures) {
+    const auto parent = static_cast<std::size_t>(e.parent);
+    if (e.parent < 0 || parent >= out.size() || !known[parent])
+      fail_input("{}: a fracture at t = {} s breaks body {}, whose voxels are not known", where, e.time, e.parent);
+    const BodyVoxels& pv = out[parent];
+    const double voxel = pv.grid.spacing * pv.solid->scale;
+    std::vector<fracture::Fragment> fragments = fracture::split(pv.piece, e.seeds, voxel, 1.0);
+    for (std::size_t k = 0; k < e.child_body.size(); ++k) {
+      const auto child = static_cast<std::size_t>(e.child_body[k]);
+      auto it = std::find_if(fragments.begin(), fragments.end(), [&](const fracture::Fragment& f) {
+        return f.seed == e.child_seed[k] && f.component == e.child_component[k];
+      });
+      if (child >= out.size() || it == fragments.end())
+        fail_input("{}: the fracture at t = {} s has a child (body {}, seed {}, component {}) that splitting its "
+                   "parent does not give",
+                   where, e.time, e.child_body[k], e.child_seed[k], e.child_component[k]);
+      out[child].solid = pv.solid;
+      out[child].grid = pv.grid;
+      out[child].piece = std::move(it->piece);
+      known[child] = true;
+    }
+  }
+  for (std::size_t b = 0; b < out.size(); ++b) {
+    if (!known[b]) fail_input("{}: body {} ('{}') has no voxels from its solid or a fracture", where, b, run.bodies[b].name);
+    if (static_cast<std::int64_t>(out[b].piece.size()) != run.bodies[b].voxels)
+      fail_input("{}: body {} ('{}') has {} voxels in the run file, {} rebuilt from its solid and the fractures", where,
+                 b, run.bodies[b].name, run.bodies[b].voxels, out[b].piece.size());
+    out[b].reference_center = run.bodies[b].reference_center;
+    out[b].index();
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -185,18 +290,25 @@ StabilityReport check_stability(const std::string& run_dir, const StabilityLimit
   const scene::Scene scene = scene::parse_scene(run.scene_text, run.scene_path);
   const double spacing = report.run.spacing;
 
-  // The solids' meshes in the world, with their bounding boxes for a quick rejection.
+  // The static solids' meshes in the world, with their bounding boxes for a quick
+  // rejection; bodies (dynamic and breakable solids, and their fragments) by their
+  // voxels, where each frame's body states put them.
   std::vector<TriMesh> solids;
   std::vector<Aabb> boxes;
   for (const scene::Solid& solid : scene.solids) {
-    TriMesh m = read_particles(solid.particles).mesh;
-    for (Vec3d& v : m.vertices) v = solid.to_world(v);
+    TriMesh m;
+    if (!solid.body()) {
+      m = read_particles(solid.particles).mesh;
+      for (Vec3d& v : m.vertices) v = solid.to_world(v);
+    }
     boxes.push_back(m.bounds());
     solids.push_back(std::move(m));
   }
+  const std::vector<BodyVoxels> bodies = body_voxels(run, scene, run_dir + "/run.h5");
 
   for (const std::string& name : analysis::list_frames(run_dir + "/frames")) {
     const FrameData frame = read_frame(name);
+    const BodyStates& states = frame.bodies;
     long bad = 0;
     for (std::size_t i = 0; i < frame.fluid_count(); ++i) {
       const Vec3d q(frame.x[i], frame.y[i], frame.z[i]);
@@ -209,16 +321,30 @@ StabilityReport check_stability(const std::string& run_dir, const StabilityLimit
         ++report.outside_domain;
         ++bad;
       }
-      for (std::size_t s = 0; s < solids.size(); ++s) {
+      bool inside = false;
+      for (std::size_t s = 0; s < solids.size() && !inside; ++s) {
+        if (solids[s].triangles.empty()) continue;
         if ((q.array() < boxes[s].min.array()).any() || (q.array() > boxes[s].max.array()).any()) continue;
         if (std::abs(winding_number(solids[s], q)) > 0.5) {
           const double depth = distance_to_surface(solids[s], q) / spacing;
           report.deepest = std::max(report.deepest, depth);
-          if (depth < limits.penetration) continue;
-          ++report.inside_solids;
-          ++bad;
-          break;
+          inside = depth >= limits.penetration;
         }
+      }
+      for (std::size_t k = 0; k < states.id.size() && !inside; ++k) {
+        const auto b = static_cast<std::size_t>(states.id[k]);
+        if (b >= bodies.size()) fail_input("{}: body {} is not in the run file", name, states.id[k]);
+        const BodyVoxels& bv = bodies[b];
+        if ((q - states.position[k]).norm() > bv.radius + 2 * spacing) continue;
+        const Vec3d reference = states.orientation[k].conjugate() * (q - states.position[k]) + bv.reference_center;
+        const double depth = bv.depth(reference) / spacing;
+        if (depth <= 0) continue;
+        report.deepest = std::max(report.deepest, depth);
+        inside = depth >= limits.penetration;
+      }
+      if (inside) {
+        ++report.inside_solids;
+        ++bad;
       }
     }
     if (bad > 0 && report.first_bad_frame < 0) report.first_bad_frame = frame.frame;
