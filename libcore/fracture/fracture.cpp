@@ -8,6 +8,7 @@
 #include <thread>
 #include <unordered_map>
 
+#include "common/error.h"
 #include "common/union_find.h"
 
 namespace bw::fracture {
@@ -169,21 +170,68 @@ std::vector<std::int32_t> particle_voxels(const Piece& piece) {
   return out;
 }
 
+std::int32_t nearest_seed(const Vec3d& point, const std::vector<Vec3d>& seeds) {
+  double best = std::numeric_limits<double>::infinity();
+  std::int32_t which = -1;
+  for (std::size_t k = 0; k < seeds.size(); ++k) {
+    const double d = (seeds[k] - point).squaredNorm();
+    if (d < best) best = d, which = static_cast<std::int32_t>(k);
+  }
+  return which;
+}
+
 std::vector<Fragment> split(const Piece& piece, const std::vector<Vec3d>& seeds, double voxel_size, double density,
                             int threads) {
+  const FaceNeighbours neighbours = face_neighbours(piece);
+  return fragments(piece, neighbours, components(neighbours, nearest_seeds(piece.centers, seeds, threads)), voxel_size,
+                   density, threads);
+}
+
+FaceNeighbours face_neighbours(const Piece& piece) {
   const std::size_t n = piece.size();
-  const std::vector<std::int32_t> label = nearest_seeds(piece.centers, seeds, threads);
-  const CellMap map(piece.cells);
-  // Face-connected components of each cell.
-  UnionFind sets(n);
+  FaceNeighbours out(n);
+  if (n == 0) return out;
+  CellIndex lo = piece.cells[0], hi = lo;
+  for (const CellIndex& c : piece.cells)
+    for (std::size_t a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+  std::array<std::int64_t, 3> dims{};
+  for (std::size_t a = 0; a < 3; ++a) dims[a] = std::int64_t(hi[a]) - lo[a] + 1;
+  if (dims[0] * dims[1] * dims[2] > kDenseCells) {
+    const CellMap map(piece.cells);
+    for (std::size_t v = 0; v < n; ++v)
+      for (std::size_t f = 0; f < kFaces.size(); ++f)
+        out[v][f] = map.find(offset(piece.cells[v], kFaces[f][0], kFaces[f][1], kFaces[f][2]));
+    return out;
+  }
+  // A dense table of the cells' box, looked up by index steps.
+  std::vector<std::int32_t> table(static_cast<std::size_t>(dims[0] * dims[1] * dims[2]), -1);
+  std::vector<std::int64_t> key(n);
   for (std::size_t v = 0; v < n; ++v) {
-    for (int a = 0; a < 3; ++a) {
-      CellIndex c = piece.cells[v];
-      ++c[a];
-      const std::int32_t u = map.find(c);
-      if (u >= 0 && label[static_cast<std::size_t>(u)] == label[v]) sets.unite(static_cast<std::int32_t>(v), u);
+    const CellIndex& c = piece.cells[v];
+    key[v] = ((std::int64_t(c[2]) - lo[2]) * dims[1] + (std::int64_t(c[1]) - lo[1])) * dims[0] + (std::int64_t(c[0]) - lo[0]);
+    table[static_cast<std::size_t>(key[v])] = static_cast<std::int32_t>(v);
+  }
+  const std::array<std::int64_t, 3> stride{1, dims[0], dims[0] * dims[1]};
+  for (std::size_t v = 0; v < n; ++v) {
+    const CellIndex& c = piece.cells[v];
+    for (std::size_t a = 0; a < 3; ++a) {
+      out[v][2 * a] = c[a] < hi[a] ? table[static_cast<std::size_t>(key[v] + stride[a])] : -1;
+      out[v][2 * a + 1] = c[a] > lo[a] ? table[static_cast<std::size_t>(key[v] - stride[a])] : -1;
     }
   }
+  return out;
+}
+
+Components components(const FaceNeighbours& neighbours, const std::vector<std::int32_t>& label) {
+  const std::size_t n = neighbours.size();
+  if (label.size() != n) fail_run("fracture: {} labels for {} voxels", label.size(), n);
+  // Face-connected components of each cell (the +x, +y, +z neighbours suffice).
+  UnionFind sets(n);
+  for (std::size_t v = 0; v < n; ++v)
+    for (const std::size_t f : {0u, 2u, 4u}) {
+      const std::int32_t u = neighbours[v][f];
+      if (u >= 0 && label[static_cast<std::size_t>(u)] == label[v]) sets.unite(static_cast<std::int32_t>(v), u);
+    }
   // Components by seed, then by decreasing size (ties: the smaller first voxel).
   std::vector<std::int32_t> root(n), size(n, 0);
   for (std::size_t v = 0; v < n; ++v) {
@@ -199,62 +247,105 @@ std::vector<Fragment> split(const Piece& piece, const std::vector<Vec3d>& seeds,
     if (size[sa] != size[sb]) return size[sa] > size[sb];
     return a < b;
   });
+  Components out;
   std::vector<std::int32_t> fragment_of_root(n, -1);
-  std::vector<Fragment> out(roots.size());
   for (std::size_t f = 0; f < roots.size(); ++f) {
     const auto r = static_cast<std::size_t>(roots[f]);
     fragment_of_root[r] = static_cast<std::int32_t>(f);
-    out[f].seed = label[r];
-    out[f].component = (f > 0 && out[f - 1].seed == label[r]) ? out[f - 1].component + 1 : 0;
+    out.seed.push_back(label[r]);
+    out.component.push_back(f > 0 && out.seed[f - 1] == label[r] ? out.component[f - 1] + 1 : 0);
+    out.size.push_back(size[r]);
   }
-  std::vector<std::int32_t> frag(n);
-  for (std::size_t v = 0; v < n; ++v) {
-    frag[v] = fragment_of_root[static_cast<std::size_t>(root[v])];
-    Piece& p = out[static_cast<std::size_t>(frag[v])].piece;
-    p.cells.push_back(piece.cells[v]);
-    p.centers.push_back(piece.centers[v]);
-    if (!piece.anchor.empty()) p.anchor.push_back(piece.anchor[v]);
-  }
+  out.fragment.resize(n);
+  for (std::size_t v = 0; v < n; ++v) out.fragment[v] = fragment_of_root[static_cast<std::size_t>(root[v])];
+  return out;
+}
+
+std::vector<Fragment> fragments(const Piece& piece, const FaceNeighbours& neighbours, const Components& parts,
+                                double voxel_size, double density, int threads) {
+  const std::size_t n = piece.size();
+  const std::vector<std::int32_t>& frag = parts.fragment;
+  const std::size_t nf = parts.size.size();
+  // Voxels and particles listed by fragment (counting sorts, in index order), so that
+  // each fragment is then built on its own, fragments shared out over the threads.
+  auto by_fragment = [&](const std::vector<std::int32_t>& of) {
+    std::vector<std::uint32_t> start(nf + 1, 0), list;
+    for (const std::int32_t f : of)
+      if (f >= 0) ++start[static_cast<std::size_t>(f) + 1];
+    for (std::size_t f = 0; f < nf; ++f) start[f + 1] += start[f];
+    list.resize(start[nf]);
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < of.size(); ++i)
+      if (of[i] >= 0) list[fill[static_cast<std::size_t>(of[i])]++] = static_cast<std::uint32_t>(i);
+    return std::pair{start, list};
+  };
+  const auto [vstart, voxels] = by_fragment(frag);
   // The parent's particles go with the voxel they belong to.
   const std::vector<std::int32_t> pv = particle_voxels(piece);
+  std::vector<std::int32_t> particle_fragment(piece.particles.size(), -1);
   std::vector<std::uint8_t> has_particle(n, 0);
   for (std::size_t i = 0; i < piece.particles.size(); ++i) {
     if (pv[i] < 0) continue;
     const auto v = static_cast<std::size_t>(pv[i]);
-    out[static_cast<std::size_t>(frag[v])].source.push_back(static_cast<std::int32_t>(i));
-    Piece& p = out[static_cast<std::size_t>(frag[v])].piece;
-    p.particles.push_back(piece.particles[i]);
-    p.normals.push_back(piece.normals[i]);
-    p.flatness.push_back(piece.flatness.empty() ? 1.0 : piece.flatness[i]);
-    p.particle_cells.push_back(piece.particle_cells[i]);
+    particle_fragment[i] = frag[v];
     if (piece.particle_cells[i] == piece.cells[v]) has_particle[v] = 1;
   }
-  // New particles on the crack faces: at the centres of voxels facing another fragment.
-  for (std::size_t v = 0; v < n; ++v) {
-    Vec3d sum = Vec3d::Zero();
-    int faces = 0;
-    for (const auto& d : kFaces) {
-      const std::int32_t u = map.find(offset(piece.cells[v], d[0], d[1], d[2]));
-      if (u < 0 || frag[static_cast<std::size_t>(u)] == frag[v]) continue;
-      sum += (piece.centers[static_cast<std::size_t>(u)] - piece.centers[v]).normalized();
-      ++faces;
-    }
-    if (faces == 0 || has_particle[v]) continue;
-    out[static_cast<std::size_t>(frag[v])].source.push_back(-1);
-    Piece& p = out[static_cast<std::size_t>(frag[v])].piece;
-    const double length = sum.norm();
-    p.particles.push_back(piece.centers[v]);
-    p.normals.push_back(length > 1e-12 ? Vec3d(sum / length) : Vec3d::Zero());
-    p.flatness.push_back(length / faces);
-    p.particle_cells.push_back(piece.cells[v]);
-  }
-  parallel_slices(out.size(), threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t f = begin; f < end; ++f) {
+  const auto [pstart, particles] = by_fragment(particle_fragment);
+  std::vector<Fragment> out(nf);
+  const int t = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const std::size_t count = std::min<std::size_t>(static_cast<std::size_t>(t), n / 4096 + 1);
+  auto work = [&](std::size_t first) {
+    for (std::size_t f = first; f < nf; f += count) {
       Fragment& fr = out[f];
-      fr.mass = rigid::voxel_mass_properties(fr.piece.centers, voxel_size, density);
-      fr.anchored = std::any_of(fr.piece.anchor.begin(), fr.piece.anchor.end(), [](std::uint8_t a) { return a != 0; });
+      Piece& p = fr.piece;
+      fr.seed = parts.seed[f];
+      fr.component = parts.component[f];
+      const std::size_t v0 = vstart[f], v1 = vstart[f + 1];
+      p.cells.reserve(v1 - v0);
+      p.centers.reserve(v1 - v0);
+      for (std::size_t k = v0; k < v1; ++k) {
+        const std::size_t v = voxels[k];
+        p.cells.push_back(piece.cells[v]);
+        p.centers.push_back(piece.centers[v]);
+        if (!piece.anchor.empty()) p.anchor.push_back(piece.anchor[v]);
+      }
+      for (std::size_t k = pstart[f]; k < pstart[f + 1]; ++k) {
+        const std::size_t i = particles[k];
+        fr.source.push_back(static_cast<std::int32_t>(i));
+        p.particles.push_back(piece.particles[i]);
+        p.normals.push_back(piece.normals[i]);
+        p.flatness.push_back(piece.flatness.empty() ? 1.0 : piece.flatness[i]);
+        p.particle_cells.push_back(piece.particle_cells[i]);
+      }
+      // New particles on the crack faces: at the centres of voxels facing another
+      // fragment.
+      for (std::size_t k = v0; k < v1; ++k) {
+        const std::size_t v = voxels[k];
+        if (has_particle[v]) continue;
+        Vec3d sum = Vec3d::Zero();
+        int faces = 0;
+        for (std::size_t d = 0; d < kFaces.size(); ++d) {
+          const std::int32_t u = neighbours[v][d];
+          if (u < 0 || frag[static_cast<std::size_t>(u)] == frag[v]) continue;
+          sum += (piece.centers[static_cast<std::size_t>(u)] - piece.centers[v]).normalized();
+          ++faces;
+        }
+        if (faces == 0) continue;
+        fr.source.push_back(-1);
+        const double length = sum.norm();
+        p.particles.push_back(piece.centers[v]);
+        p.normals.push_back(length > 1e-12 ? Vec3d(sum / length) : Vec3d::Zero());
+        p.flatness.push_back(length / faces);
+        p.particle_cells.push_back(piece.cells[v]);
+      }
+      fr.mass = rigid::voxel_mass_properties(p.centers, voxel_size, density);
+      fr.anchored = std::any_of(p.anchor.begin(), p.anchor.end(), [](std::uint8_t a) { return a != 0; });
     }
-  });
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t k = 1; k < count; ++k) pool.emplace_back(work, k);
+  work(0);
+  for (auto& th : pool) th.join();
   return out;
 }
 
@@ -314,18 +405,69 @@ std::vector<std::vector<double>> fragment_bond_counts(const std::vector<Fragment
                                                       int threads) {
   std::vector<std::vector<double>> out(fragments.size());
   std::size_t total = 0;
-  for (const Fragment& f : fragments) total += f.piece.particles.size();
-  // Interleaved by fragment so that both threads get large and small ones.
+  bool cells = true;
+  for (const Fragment& f : fragments) {
+    total += f.piece.particles.size();
+    cells = cells && f.piece.particle_cells.size() == f.piece.particles.size();
+  }
   const int t = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const std::size_t count = std::min<std::size_t>(static_cast<std::size_t>(t), total / 4096 + 1);
-  auto work = [&](std::size_t first) {
-    for (std::size_t f = first; f < fragments.size(); f += count)
-      out[f] = bond_counts(fragments[f].piece.particles, spacing, h);
+  auto in_threads = [&](auto&& work) {  // fragments interleaved, so that each thread gets large and small ones
+    std::vector<std::thread> pool;
+    for (std::size_t k = 1; k < count; ++k) pool.emplace_back(work, k);
+    work(0);
+    for (auto& th : pool) th.join();
   };
-  std::vector<std::thread> pool;
-  for (std::size_t k = 1; k < count; ++k) pool.emplace_back(work, k);
-  work(0);
-  for (auto& th : pool) th.join();
+  if (!cells) {
+    in_threads([&](std::size_t first) {
+      for (std::size_t f = first; f < fragments.size(); f += count)
+        out[f] = bond_counts(fragments[f].piece.particles, spacing, h);
+    });
+    return out;
+  }
+  // Particles sit one per cell at the centres of their cells of the root solid's grid
+  // (bw-sample's, and the crack faces' at their voxels' centres; no two fragments
+  // share a cell), so a particle's bonds are found at fixed cell offsets, those
+  // within h of its own cell's centre, in one table of every fragment's cells.
+  std::vector<CellIndex> all;
+  std::vector<std::pair<std::int32_t, std::int32_t>> owner;  // (fragment, particle) per cell of `all`
+  all.reserve(total);
+  owner.reserve(total);
+  for (std::size_t f = 0; f < fragments.size(); ++f)
+    for (std::size_t i = 0; i < fragments[f].piece.particle_cells.size(); ++i) {
+      all.push_back(fragments[f].piece.particle_cells[i]);
+      owner.emplace_back(static_cast<std::int32_t>(f), static_cast<std::int32_t>(i));
+    }
+  const CellMap map(all);
+  const int reach = static_cast<int>(std::ceil(h / spacing));
+  std::vector<std::array<int, 3>> offsets;
+  for (int dz = -reach; dz <= reach; ++dz)
+    for (int dy = -reach; dy <= reach; ++dy)
+      for (int dx = -reach; dx <= reach; ++dx)
+        if (std::sqrt(double(dx * dx + dy * dy + dz * dz)) * spacing < h * (1 + 1e-9)) offsets.push_back({dx, dy, dz});
+  const double norm = 15.0 / (std::numbers::pi * std::pow(h, 6)) * spacing * spacing * spacing;
+  const double h2 = h * h;
+  in_threads([&](std::size_t first) {
+    for (std::size_t f = first; f < fragments.size(); f += count) {
+      const Piece& p = fragments[f].piece;
+      std::vector<double>& b = out[f];
+      b.assign(p.particles.size(), 0.0);
+      for (std::size_t i = 0; i < p.particles.size(); ++i) {
+        double sum = 0;
+        for (const auto& o : offsets) {
+          const std::int32_t k = map.find(offset(p.particle_cells[i], o[0], o[1], o[2]));
+          if (k < 0 || owner[static_cast<std::size_t>(k)].first != static_cast<std::int32_t>(f)) continue;
+          const auto j = static_cast<std::size_t>(owner[static_cast<std::size_t>(k)].second);
+          const double r2 = (p.particles[j] - p.particles[i]).squaredNorm();
+          if (r2 < h2) {
+            const double q = h - std::sqrt(r2);
+            sum += q * q * q;
+          }
+        }
+        b[i] = norm * sum;
+      }
+    }
+  });
   return out;
 }
 

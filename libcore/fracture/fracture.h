@@ -13,6 +13,7 @@
 // the input, not on the number of threads.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -45,6 +46,9 @@ struct Fragment {
 // Per voxel centre, the index of the nearest seed (ties: the lower index).
 std::vector<std::int32_t> nearest_seeds(const std::vector<Vec3d>& centers, const std::vector<Vec3d>& seeds,
                                         int threads = 0);
+// The same for one point, by a plain search in double: the rule every partition of
+// the simulator follows (its device decides in float only where that cannot differ).
+std::int32_t nearest_seed(const Vec3d& point, const std::vector<Vec3d>& seeds);
 
 // Splits `piece` by `seeds` into fragments, ordered by seed, then component.
 // `voxel_size` is the voxel edge in the reference configuration (m), `density` in
@@ -52,12 +56,38 @@ std::vector<std::int32_t> nearest_seeds(const std::vector<Vec3d>& centers, const
 std::vector<Fragment> split(const Piece& piece, const std::vector<Vec3d>& seeds, double voxel_size, double density,
                             int threads = 0);
 
+// The parts of split, for a caller that partitions on its own (the simulator's
+// device) or tries several seed sets on one piece:
+
+// Per voxel, its face neighbours in the piece (+x, -x, +y, -y, +z, -z; -1 where the
+// cell is not a voxel of the piece).
+using FaceNeighbours = std::vector<std::array<std::int32_t, 6>>;
+FaceNeighbours face_neighbours(const Piece& piece);
+
+// The fragments of a partition: per voxel its fragment, and per fragment its seed,
+// component and voxel count, ordered by seed, then by decreasing size (ties: the
+// smaller first voxel), components numbered from 0 within their seed.
+struct Components {
+  std::vector<std::int32_t> fragment;   // per voxel
+  std::vector<std::int32_t> seed, component, size;  // per fragment
+};
+// `labels`: the nearest seed of each voxel (nearest_seeds' result).
+Components components(const FaceNeighbours& neighbours, const std::vector<std::int32_t>& labels);
+
+// The fragments themselves: voxels, particles (the parent's, and new ones on the
+// crack faces), mass properties.
+std::vector<Fragment> fragments(const Piece& piece, const FaceNeighbours& neighbours, const Components& parts,
+                                double voxel_size, double density, int threads = 0);
+
 // Per particle: spacing^3 sum_j W_spiky(|x_i - x_j|, h) over the particles (itself
 // included): the kernel-weighted number of its bonds (0.60 alone at h = 2 spacings,
 // 1.24 inside a full cubic lattice).
 std::vector<double> bond_counts(const std::vector<Vec3d>& particles, double spacing, double h);
 
 // bond_counts of each fragment's particles, fragments shared out over `threads`.
+// Found by cell offsets: each fragment's particles must sit one per cell at the
+// centres of their particle_cells, as split's do (bw-sample's particles and the crack
+// faces' at their voxels); a fragment without particle_cells is searched by distance.
 std::vector<std::vector<double>> fragment_bond_counts(const std::vector<Fragment>& fragments, double spacing, double h,
                                                       int threads = 0);
 

@@ -129,5 +129,49 @@ TEST(Bonds, KernelWeightedNeighbourCount) {
   EXPECT_LT(b[face], b[centre]);
 }
 
+TEST(Bonds, FragmentsByCellOffsetsAsByDistance) {
+  // fragment_bond_counts finds bonds at cell offsets; bond_counts by distance. They
+  // agree on split's fragments (parent particles and crack faces), at h = 2 s and at
+  // a support that is not a whole number of spacings.
+  const Piece p = block(16, 12, 9);
+  const std::vector<Vec3d> seeds = {{0.03, 0.02, 0.01}, {0.13, 0.05, 0.05}, {0.1, 0.09, 0.02}, {0.05, 0.08, 0.07}};
+  const auto fragments = split(p, seeds, kS, 2400);
+  ASSERT_GE(fragments.size(), 4u);
+  for (const double h : {2 * kS, 1.7 * kS, 2.6 * kS}) {
+    const auto by_cells = fragment_bond_counts(fragments, kS, h, 2);
+    ASSERT_EQ(by_cells.size(), fragments.size());
+    for (std::size_t f = 0; f < fragments.size(); ++f) {
+      const auto by_distance = bond_counts(fragments[f].piece.particles, kS, h);
+      ASSERT_EQ(by_cells[f].size(), by_distance.size());
+      for (std::size_t i = 0; i < by_distance.size(); ++i)
+        EXPECT_NEAR(by_cells[f][i], by_distance[i], 1e-12) << "h " << h << ", fragment " << f << ", particle " << i;
+    }
+  }
+}
+
+TEST(Split, PartsGiveTheSameFragmentsAsTheWhole) {
+  // face_neighbours, components and fragments, as the simulator calls them with its
+  // own partition, give what split gives.
+  const Piece p = block(14, 9, 6);
+  const std::vector<Vec3d> seeds = {{0.02, 0.02, 0.01}, {0.11, 0.05, 0.04}, {0.07, 0.08, 0.02}};
+  const auto whole = split(p, seeds, kS, 2400);
+  const FaceNeighbours n = face_neighbours(p);
+  const auto parts = fragments(p, n, components(n, nearest_seeds(p.centers, seeds)), kS, 2400, 2);
+  ASSERT_EQ(parts.size(), whole.size());
+  for (std::size_t f = 0; f < whole.size(); ++f) {
+    EXPECT_EQ(parts[f].seed, whole[f].seed);
+    EXPECT_EQ(parts[f].component, whole[f].component);
+    EXPECT_EQ(parts[f].piece.cells, whole[f].piece.cells);
+    EXPECT_EQ(parts[f].piece.particles, whole[f].piece.particles);
+    EXPECT_EQ(parts[f].source, whole[f].source);
+    EXPECT_EQ(parts[f].mass.center, whole[f].mass.center);
+  }
+  // Neighbours: the +x neighbour of voxel 0 is voxel 1, it has no -x neighbour.
+  EXPECT_EQ(n[0][0], 1);
+  EXPECT_EQ(n[0][1], -1);
+  EXPECT_EQ(n[0][2], 14);
+  EXPECT_EQ(n[0][4], 14 * 9);
+}
+
 }  // namespace
 }  // namespace bw::fracture
