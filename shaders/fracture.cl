@@ -67,3 +67,106 @@ __kernel void fracture_load(SimParams P, uint count, float dt, float decay, __gl
   energy[g] = e;
   strength[g] = e / binding[g];
 }
+
+// The Voronoi cells of a fracture's seeds restricted to a body (method.md 4, "Ours";
+// sim/fracture_stage.cpp): per voxel, the nearest seed. Coordinates are in voxel
+// units relative to the centre of the body's voxels (the host converts them from
+// the reference configuration in double), which keeps float's error to about 1e-7 of
+// the body's size. The voxels come sorted by the cells of a uniform grid of 4 voxels
+// edge ("bricks", at most 64 voxels each; brick_start[b] is the first voxel of brick
+// b, brick_lo and brick_hi the box of its voxels), one work-group per brick: the
+// group first lists the seeds that can be nearest to some point of its box (those
+// no farther from the box than the least farthest-corner distance of any seed),
+// then each voxel compares only those. The label is the nearest seed's index (ties:
+// the lower), with BW_SEED_CLOSE set when another seed's squared distance is within
+// `tol` of it: float cannot tell those apart reliably, and the host decides them in
+// double (the same rule as fracture::nearest_seeds), so that the cells do not depend
+// on the device.
+#define BW_SEED_CLOSE 0x80000000u
+#define BW_BRICK 64
+// Candidate seeds a group lists in local memory (4 KiB); with more, its voxels
+// compare every seed.
+#define BW_LISTED_SEEDS 1024
+
+__kernel __attribute__((reqd_work_group_size(BW_BRICK, 1, 1))) void voxel_seeds(
+    uint nseeds, __global const float4* seeds, __global const uint* brick_start, __global const float4* brick_lo,
+    __global const float4* brick_hi, __global const float* vx, __global const float* vy, __global const float* vz,
+    float tol, __global uint* label) {
+  __local float least[BW_BRICK];
+  __local uint counts[BW_BRICK + 1];
+  __local uint listed[BW_LISTED_SEEDS];
+  const uint b = get_group_id(0), lid = get_local_id(0);
+  const float4 lo = brick_lo[b], hi = brick_hi[b];
+  float far = INFINITY;
+  for (uint k = lid; k < nseeds; k += BW_BRICK) {
+    const float4 q = seeds[k];
+    const float fx = fmax(fabs(q.x - lo.x), fabs(q.x - hi.x)), fy = fmax(fabs(q.y - lo.y), fabs(q.y - hi.y)),
+                fz = fmax(fabs(q.z - lo.z), fabs(q.z - hi.z));
+    far = fmin(far, fx * fx + fy * fy + fz * fz);
+  }
+  least[lid] = far;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (uint w = BW_BRICK / 2; w > 0; w >>= 1) {
+    if (lid < w) least[lid] = fmin(least[lid], least[lid + w]);
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  // A seed farther than this from every point of the box is never within tol of the
+  // nearest. The seeds within it are listed in index order: each work-item marks a
+  // contiguous share of the seeds, a scan of the shares' counts gives where each
+  // share's marked seeds go.
+  const float reach = least[0] + 2.0f * tol;
+  const uint share = (nseeds + BW_BRICK - 1) / BW_BRICK;
+  const uint k0 = min(lid * share, nseeds), k1 = min(k0 + share, nseeds);
+  uint mine = 0;
+  for (uint k = k0; k < k1; ++k) {
+    const float4 q = seeds[k];
+    const float nx = fmax(fmax(lo.x - q.x, q.x - hi.x), 0.0f), ny = fmax(fmax(lo.y - q.y, q.y - hi.y), 0.0f),
+                nz = fmax(fmax(lo.z - q.z, q.z - hi.z), 0.0f);
+    mine += nx * nx + ny * ny + nz * nz <= reach ? 1u : 0u;
+  }
+  counts[lid] = mine;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (lid == 0) {
+    uint sum = 0;
+    for (uint w = 0; w < BW_BRICK; ++w) {
+      const uint c = counts[w];
+      counts[w] = sum;
+      sum += c;
+    }
+    counts[BW_BRICK] = sum;
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  uint at = counts[lid];
+  for (uint k = k0; k < k1; ++k) {
+    const float4 q = seeds[k];
+    const float nx = fmax(fmax(lo.x - q.x, q.x - hi.x), 0.0f), ny = fmax(fmax(lo.y - q.y, q.y - hi.y), 0.0f),
+                nz = fmax(fmax(lo.z - q.z, q.z - hi.z), 0.0f);
+    if (nx * nx + ny * ny + nz * nz <= reach) {
+      if (at < BW_LISTED_SEEDS) listed[at] = k;
+      ++at;
+    }
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  const uint ncand = counts[BW_BRICK];
+  const uint first = brick_start[b];
+  if (lid >= brick_start[b + 1] - first) return;
+  const uint v = first + lid;
+  const float px = vx[v], py = vy[v], pz = vz[v];
+  float best = INFINITY, second = INFINITY;
+  uint which = 0xffffffffu;
+  // Candidates in index order, so that the first of equal distances (the lower seed)
+  // stays; a list longer than local memory holds is not used (every seed compared).
+  const bool use_list = ncand <= BW_LISTED_SEEDS;
+  const uint loop = use_list ? ncand : nseeds;
+  for (uint c = 0; c < loop; ++c) {
+    const uint k = use_list ? listed[c] : c;
+    const float4 q = seeds[k];
+    const float dx = q.x - px, dy = q.y - py, dz = q.z - pz;
+    const float d = dx * dx + dy * dy + dz * dz;
+    const bool nearer = d < best;
+    second = nearer ? best : fmin(second, d);
+    which = nearer ? k : which;
+    best = nearer ? d : best;
+  }
+  label[v] = which | (second - best <= tol ? BW_SEED_CLOSE : 0u);
+}

@@ -284,6 +284,28 @@ void Context::launch(Kernel& kernel, std::size_t items) {
   }
 }
 
+void Context::launch_groups(Kernel& kernel, std::size_t groups, std::size_t local) {
+  if (!kernel.impl_) fail_run("launching an empty kernel");
+  if (groups == 0) return;
+  Kernel::Impl& k = *kernel.impl_;
+  try {
+    const std::size_t limit = k.kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(impl_->device);
+    if (local > limit)
+      fail_run("kernel {} needs work-groups of {} work-items; the device runs at most {}", k.name, local, limit);
+    const auto start = std::chrono::steady_clock::now();
+    impl_->queue.enqueueNDRangeKernel(k.kernel, cl::NullRange, cl::NDRange(groups * local), cl::NDRange(local));
+    if (impl_->profiling) {
+      impl_->queue.finish();
+      KernelTime& t = impl_->times[k.name];
+      t.name = k.name;
+      t.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      ++t.launches;
+    }
+  } catch (const cl::Error& e) {
+    throw_cl_error(e, fmt::format(" (kernel {}, {} groups of {})", k.name, groups, local));
+  }
+}
+
 void Context::finish() {
   try {
     impl_->queue.finish();

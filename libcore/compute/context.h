@@ -136,6 +136,10 @@ class Context {
   // kernel from what the device reports for it, and the global size rounded up to a
   // multiple of it, so kernels must check their index against their item count.
   void launch(Kernel& kernel, std::size_t items);
+  // Runs `kernel` as `groups` work-groups of `local` work-items each (1-D), for
+  // kernels that share local memory within a group. Throws RunError when the device
+  // cannot run groups that large for this kernel.
+  void launch_groups(Kernel& kernel, std::size_t groups, std::size_t local);
   // Waits until everything queued has run.
   void finish();
 

@@ -151,6 +151,24 @@ class Solver {
   // The fractures so far (docs/formats.md, /fracture), in order; empty without
   // breakable solids.
   const std::vector<FractureEvent>& fracture_events() const;
+  // Breaks the breakable body `body` now at `seeds` (reference configuration) as the
+  // energy criterion does at its seeds: the same partition, fragments, new bodies and
+  // event, without the kick of leftover energy. Returns the number of fragments, 0
+  // when fewer than two seeds are left once every fragment has its least size (8
+  // voxels) and the scene's max_chunks holds. Throws RunError when the body is not breakable.
+  int break_body(int body, const std::vector<Vec3d>& seeds);
+  // Voxels of the partitions so far that the device left to the host (their two
+  // nearest seeds closer than float can tell).
+  std::int64_t fracture_host_decided_voxels() const;
+  // Wall time the fracture stage spent breaking bodies so far, by part (s).
+  struct FractureTimes {
+    double partition = 0;   // nearest seed of every voxel (device, and the host's ties)
+    double fragments = 0;   // components, the fragments' voxels, particles and mass
+    double bonds = 0;       // the fragments' binding energies
+    double bodies = 0;      // new bodies, retired parents, events, the slots' layout
+    int events = 0;
+  };
+  FractureTimes fracture_times() const;
 
   // For tests and diagnostics: also sum the forces on the static solids' particles
   // (fluid reaction and contacts with bodies) and accumulate their impulse over the

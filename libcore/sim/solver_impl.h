@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -173,6 +174,16 @@ struct Solver::Impl {
   void fracture_layout(const std::vector<float>& dx, const std::vector<float>& dy, const std::vector<float>& dz);
   void fracture_load(double dt);
   void fracture_test();
+  void reserve_partition(std::size_t voxels, std::size_t bricks);
+  std::vector<std::int32_t> partition(const BreakableBody& tb, const std::vector<Vec3d>& seeds);
+  std::vector<fracture::Fragment> fragments_of(const BreakableBody& tb, std::vector<Vec3d>& seeds,
+                                               std::vector<std::int32_t>* seed_particles, std::int64_t budget);
+  void break_into(BreakableBody& tb, std::vector<fracture::Fragment>& fragments, const std::vector<Vec3d>& seeds,
+                  const std::vector<std::int32_t>& seed_particles, const FractureLoads* loads,
+                  std::vector<BreakableBody>& next);
+  int fracture_pass(const std::function<std::vector<fracture::Fragment>(BreakableBody&, std::int64_t, std::vector<Vec3d>&,
+                                                                        std::vector<std::int32_t>&)>& choose);
+  int break_body(int body, const std::vector<Vec3d>& seeds);
   void retire_body(int body);
   std::uint64_t fracture_bytes() const;
 

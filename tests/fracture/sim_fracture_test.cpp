@@ -6,9 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <random>
 
 #include <gtest/gtest.h>
 
+#include "common/error.h"
+#include "fracture/fracture.h"
 #include "fracture_fixtures.h"
 #include "sim/solver.h"
 #include "test_support.h"
@@ -157,6 +160,84 @@ TEST(Fracture, MaxChunksIsNeverExceeded) {
   EXPECT_FALSE(o.events.empty());
   EXPECT_LE(o.most_active, 3);
   EXPECT_LE(strong_wall().most_active, 64);
+}
+
+// The wall alone on its floor, no water: the solver breaks it at given seeds.
+struct DryWall {
+  test::TempDir dir;
+  sim::Setup setup;
+  fracture::Piece piece;  // the wall as the solver holds it
+  DryWall() {
+    test::write_fracture_solids(dir.file(""));
+    std::string text = test::fracture_scene(kGentle, 0.97, kEnd, "[fracture]\nmax_chunks = 500\n");
+    text.erase(text.find("[[fluid.block]]"), text.find("[[solid]]") - text.find("[[fluid.block]]"));
+    setup = test::prepare_text(dir.file(""), text);
+    const sim::BodySetup& b = setup.bodies.at(0);
+    piece.cells = b.voxel_cells;
+    piece.centers = b.voxel_centers;
+    piece.particles = b.particles;
+    piece.normals = b.normals;
+    piece.flatness = b.flatness;
+    piece.particle_cells = b.particle_cells;
+  }
+};
+
+// The fragments a solver made of the wall at its event's seeds against the host's
+// split at the same seeds, fragment by fragment.
+void expect_host_split(const sim::Solver& solver, const fracture::Piece& piece) {
+  ASSERT_EQ(solver.fracture_events().size(), 1u);
+  const FractureEvent& e = solver.fracture_events().front();
+  const std::vector<fracture::Fragment> host = fracture::split(piece, e.seeds, test::kWallSpacing, test::kWallDensity);
+  ASSERT_EQ(e.child_body.size(), host.size());
+  for (std::size_t c = 0; c < host.size(); ++c) {
+    EXPECT_EQ(e.child_seed[c], host[c].seed);
+    EXPECT_EQ(e.child_component[c], host[c].component);
+    const auto body = e.child_body[c];
+    EXPECT_EQ(solver.body_info(body).voxels, static_cast<std::int32_t>(host[c].piece.size())) << "fragment " << c;
+    EXPECT_EQ(solver.body(body).mass().center, host[c].mass.center) << "fragment " << c;
+  }
+}
+
+TEST(Fracture, DevicePartitionIsTheHostsNearestSeed) {
+  // 40 seeds anywhere in the wall (ties are improbable): the device decides almost
+  // every voxel, and the fragments are the host's.
+  DryWall w;
+  sim::Solver solver(w.setup, test::shared_context());
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> ux(0.3, 0.36), uy(0.02, 0.32), uz(0.0, 0.3);
+  std::vector<Vec3d> seeds;
+  for (int k = 0; k < 40; ++k) seeds.push_back({ux(rng), uy(rng), uz(rng)});
+  const int made = solver.break_body(0, seeds);
+  test::figure("fragments", made);
+  test::figure("voxels decided on the host", static_cast<double>(solver.fracture_host_decided_voxels()));
+  EXPECT_GE(made, 10);
+  expect_host_split(solver, w.piece);
+}
+
+TEST(Fracture, DevicePartitionLeavesNearTiesToTheHost) {
+  // Seeds in mirror pairs about planes through voxel centres: whole layers of voxels
+  // are as near to two seeds as rounding lets them be; float cannot order those, and
+  // the device leaves them to the host, which decides in double.
+  DryWall w;
+  sim::Solver solver(w.setup, test::shared_context());
+  const Vec3d c = w.piece.centers[w.piece.size() / 2];
+  const double s = test::kWallSpacing;
+  const std::vector<Vec3d> seeds = {c + Vec3d(0, 3 * s, 0), c - Vec3d(0, 3 * s, 0), c + Vec3d(0, 0, 4 * s),
+                                    c - Vec3d(0, 0, 4 * s)};
+  EXPECT_EQ(solver.break_body(0, seeds), 4);
+  test::figure("voxels decided on the host", static_cast<double>(solver.fracture_host_decided_voxels()));
+  EXPECT_GT(solver.fracture_host_decided_voxels(), 0);
+  expect_host_split(solver, w.piece);
+}
+
+TEST(Fracture, BreakingRefusesWhatCannotBreak) {
+  DryWall w;
+  sim::Solver solver(w.setup, test::shared_context());
+  const Vec3d c = w.piece.centers[w.piece.size() / 2];
+  EXPECT_EQ(solver.break_body(0, {c}), 0) << "one seed splits nothing";
+  EXPECT_EQ(solver.break_body(0, {c, c + Vec3d(0, 0, 5)}), 0) << "a seed whose cell holds no voxel";
+  EXPECT_TRUE(solver.fracture_events().empty());
+  EXPECT_THROW(solver.break_body(5, {c, c + Vec3d(0, 0.1, 0)}), RunError);
 }
 
 TEST(Fracture, SameSceneSameFractures) {
