@@ -190,9 +190,10 @@ __kernel void boundary_forces(SimParams P, ContactParams C, uint first, uint cou
                               __global const float* bvx, __global const float* bvy, __global const float* bvz,
                               __global const float* bnx, __global const float* bny, __global const float* bnz,
                               __global const float* bflat, __global const float* bpsi, __global const uint* bsolid,
-                              __global const uint* rank, __global const OwnerParams* owners, __global float* fx, __global float* fy,
-                              __global float* fz, __global float* tx, __global float* ty, __global float* tz,
-                              __global float* touching) {
+                              __global const uint* rank, __global const uint* order, __global const OwnerParams* owners,
+                              __global const uint* wet_in, __global float* fx, __global float* fy, __global float* fz,
+                              __global float* tx, __global float* ty, __global float* tz, __global float* touching,
+                              __global uint* wet_out) {
   const uint g = get_global_id(0);
   if (g >= count) return;
   const uint k = first + g;
@@ -216,6 +217,8 @@ __kernel void boundary_forces(SimParams P, ContactParams C, uint first, uint cou
   float jx = 0.0f, jy = 0.0f, jz = 0.0f;  // sum of the velocity changes of b's patch contacts
   float cfx = 0.0f, cfy = 0.0f, cfz = 0.0f, ctx = 0.0f, cty = 0.0f, ctz = 0.0f;  // contacts: force, torque
   float pairs = 0.0f;
+  bool wet = false;  // fluid within C.wet2 of b
+  const bool wet_before = wet_in[k] != 0u;
   for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
     for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
       const int row = bw_cell_index(0, gy, gz, P.nx, P.ny);
@@ -224,6 +227,7 @@ __kernel void boundary_forces(SimParams P, ContactParams C, uint first, uint cou
         const float xj = x[j], yj = y[j], zj = z[j];
         const float dx = xj - xb, dy = yj - yb, dz = zj - zb;
         const float r2 = dx * dx + dy * dy + dz * dz;
+        wet = wet || r2 < C.wet2;
         if (r2 < h2 && r2 > min_r2) {
           // fluid_forces, the boundary term of particle j
           const float ptj = pterm[j];
@@ -288,8 +292,22 @@ __kernel void boundary_forces(SimParams P, ContactParams C, uint first, uint cou
         const float area = 3.0f * own.spacing * oth.spacing / (BW_PI_F * reach2);
         weight *= area;
         if (depth > -C.margin) pairs += weight;
+        if (dt < 0.0f) continue;
         const float fs2 = dot(fs, fs);
-        if (dt < 0.0f || !(fs2 > 0.0f)) continue;
+        if (!(fs2 > 0.0f)) {
+          // Apart, but closer than the margin with fluid at either particle at the last
+          // step: a gap narrower than the fluid's particles can resolve, whose water
+          // resists being squeezed out or drawn in and sheared (a squeeze film;
+          // method.md 5, "Ours"; docs/scene.md, "Resting in water"). A dashpot on the
+          // pair's relative velocity: it takes energy, never gives it.
+          if (!(depth > -C.margin) || !(wet_before || wet_in[order[o]] != 0u)) continue;
+          const float3 rv = (float3)(vbx - bvx[o], vby - bvy[o], vbz - bvz[o]);
+          const float3 f = (-weight * 2.0f * C.squeeze * m * C.omega) * rv;
+          cfx += f.x, cfy += f.y, cfz += f.z;
+          const float3 tq = cross(at, f);
+          ctx += tq.x, cty += tq.y, ctz += tq.z;
+          continue;
+        }
         // The dashpot and friction along and across the spring's force.
         const float3 n = fs * (1.0f / sqrt(fs2));
         const float zeta = fmin(own.damping, oth.damping);
@@ -313,6 +331,7 @@ __kernel void boundary_forces(SimParams P, ContactParams C, uint first, uint cou
   }
   touching[k] = pairs;
   if (dt < 0.0f) return;
+  wet_out[k] = wet ? 1u : 0u;
   const float inv_dt = dt > 0.0f ? 1.0f / dt : 0.0f;
   fx[k] = -P.mass * (sx + jx * inv_dt) + cfx;
   fy[k] = -P.mass * (sy + jy * inv_dt) + cfy;

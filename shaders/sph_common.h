@@ -104,6 +104,8 @@ typedef struct {
   float omega;        // contact frequency (1/s): a pair of mass m has k = m omega^2
   float reach;        // lateral reach of a particle's contact, in the pair's widest spacing
   float margin;       // pairs within the contact distance plus this count as touching (m)
+  float squeeze;      // damping ratio of a wet gap (fluid between two solids, closer than the margin)
+  float wet2;         // a boundary particle is wet with fluid within this squared distance (m^2)
   bw_uint body_owner0;  // owner of body 0
 } ContactParams;
 

@@ -26,6 +26,15 @@ constexpr float kContactReach = 1.5f;
 // as touching: the next step then takes the contact time step. A CFL step moves a
 // particle less than 0.4 h, and bodies move far less (c0 >= 10 x their speed).
 constexpr double kTouchMargin = 0.5;
+// A gap between two solids narrower than the margin with fluid at either side (a
+// boundary particle is wet with a fluid particle within kWetReach spacings, one
+// spacing being where fluid rests against it) is damped along its normal with this
+// damping ratio (docs/scene.md, "Resting in water"). An explicit dashpot is stable
+// while c dt / m_eff < 2: with the contact time step (omega dt <= 0.5) and a contact
+// point's effective mass down to M / 4 (a box turning about its edge), 0.25 keeps it
+// at 1.
+constexpr double kSqueezeDamping = 0.25;
+constexpr double kWetReach = 1.5;
 
 BodyPose pose_of(const rigid::Body& body) {
   const rigid::BodyState& st = body.state();
@@ -46,11 +55,11 @@ BodyPose pose_of(const rigid::Body& body) {
   return p;
 }
 
-OwnerParams owner_params(double mass_per_particle, double friction, double restitution, double spacing) {
+OwnerParams owner_params(double mass_per_particle, double friction, double damping, double spacing) {
   OwnerParams o{};
   o.inv_mass = mass_per_particle > 0 ? static_cast<float>(1.0 / mass_per_particle) : 0.0f;
   o.friction = static_cast<float>(friction);
-  o.damping = static_cast<float>(rigid::damping_ratio(restitution));
+  o.damping = static_cast<float>(damping);
   o.spacing = static_cast<float>(spacing);
   return o;
 }
@@ -162,6 +171,7 @@ void Solver::Impl::upload_layout() {
                                 {&r.rny, "normal y"}, {&r.rnz, "normal z"}})
       *buffer = floats(cap, fmt::format("body particles reference {}", name));
     r.pbody = uints(cap, "body particles body");
+    r.wet = {uints(cap, "boundary wet (last step)"), uints(cap, "boundary wet (this step)")};
     r.mowner = uints(cap, "boundary owner (master order)");
     r.keys = uints(cap, "boundary keys");
     r.order = uints(cap, "boundary order");
@@ -241,6 +251,9 @@ void Solver::Impl::upload_layout() {
   ctx.write_vector(r.blocks, r.block_table);
   r.block_sums = ctx.buffer(std::max<std::size_t>(1, r.block_table.size()) * sizeof(BodyReduce), "body block sums");
   r.dirty = uints(r.body_owner0 + r.bodies.size(), "Psi_b requests");
+  // Master indices changed: no particle is known to be wet until the next step.
+  const std::vector<std::uint32_t> dry(total, 0u);
+  for (Buffer& w : r.wet) ctx.write_vector(w, dry);
   r.weights_unknown = true;
   r.nb = total;
   nb = total;
@@ -252,12 +265,24 @@ void Solver::Impl::upload_layout() {
 // of its contact pairs at the last step (at least 1).
 void Solver::Impl::upload_owners() {
   RigidStage& r = *rigid;
+  // The damping ratio of a restitution as the solver steps contacts (the solid's own
+  // zeta; a pair takes the lesser of its two, so the larger restitution).
+  auto damping = [&](double restitution) {
+    auto it = r.damping_of.find(restitution);
+    if (it == r.damping_of.end())
+      it = r.damping_of
+               .emplace(restitution, std::min(params.contact_zeta_max,
+                                              rigid::damping_ratio_for_step(restitution, params.contact_step)))
+               .first;
+    return it->second;
+  };
   std::vector<OwnerParams> owners;
-  for (const SolidMaterial& m : r.materials) owners.push_back(owner_params(0, m.friction, m.restitution, m.spacing));
+  for (const SolidMaterial& m : r.materials)
+    owners.push_back(owner_params(0, m.friction, damping(m.restitution), m.spacing));
   for (const BodyEntry& e : r.bodies) {
     const bool moves = e.info.active && !e.info.fixed && !e.reference.empty();
     const double contact_mass = moves ? e.body.mass().mass / std::max(1.0, e.contact_weight) : 0.0;
-    owners.push_back(owner_params(contact_mass, e.friction, e.restitution, e.spacing));
+    owners.push_back(owner_params(contact_mass, e.friction, damping(e.restitution), e.spacing));
   }
   ctx.write_vector(r.owners, owners);
 }
@@ -308,12 +333,13 @@ void Solver::Impl::update_boundary() {
   }
   boundary_dirty = false;
   grid_valid = false;
-  // New bodies or particles: their contact weights before their first step.
-  if (r.weights_unknown) {
-    r.weights_unknown = false;
-    rigid_forces(-1.0);
-    upload_owners();
-  }
+  // The contact weights of where the bodies are now, before the step's forces and
+  // time step: a body's contact mass then shares its mass over the pairs it has now,
+  // not those of the last step (a face arriving at a floor brings all its pairs at
+  // once), and a step that starts touching takes the contact time step.
+  r.weights_unknown = false;
+  rigid_forces(-1.0);
+  upload_owners();
 }
 
 double Solver::Impl::body_speed_max() const {
@@ -341,12 +367,17 @@ void Solver::Impl::rigid_forces(double dt) {
   C.omega = static_cast<float>(params.contact_frequency);
   C.reach = kContactReach;
   C.margin = static_cast<float>(kTouchMargin * params.spacing);
+  C.squeeze = static_cast<float>(kSqueezeDamping);
+  C.wet2 = static_cast<float>(kWetReach * kWetReach * params.spacing * params.spacing);
   C.body_owner0 = r.body_owner0;
   const int f = front;
+  const int w = r.wet_read;
   r.forces.args(P, C, first, count, static_cast<float>(dt), start, x[f], y[f], z[f], vx[f], vy[f], vz[f], ax, ay, az,
                 rho, pterm, phi, hold[f], bstart, bx, by, bz, bvx, bvy, bvz, bnx, bny, bnz, bflat, bpsi, bsolid,
-                r.rank, r.owners, r.fx, r.fy, r.fz, r.tx, r.ty, r.tz, r.touching);
+                r.rank, r.order, r.owners, r.wet[static_cast<std::size_t>(w)], r.fx, r.fy, r.fz, r.tx, r.ty, r.tz,
+                r.touching, r.wet[static_cast<std::size_t>(1 - w)]);
   ctx.launch(r.forces, count);
+  if (dt >= 0) r.wet_read = 1 - w;
   sum_blocks(dt);
 }
 
@@ -414,7 +445,7 @@ std::uint64_t Solver::Impl::rigid_bytes() const {
   std::uint64_t total = 0;
   for (const Buffer* b : {&r.mx, &r.my, &r.mz, &r.mvx, &r.mvy, &r.mvz, &r.mnx, &r.mny, &r.mnz, &r.mflat, &r.mpsi, &r.mowner,
                           &r.rx, &r.ry, &r.rz, &r.rnx, &r.rny, &r.rnz, &r.pbody, &r.keys, &r.order, &r.keys_tmp,
-                          &r.order_tmp, &r.rank, &r.fx, &r.fy, &r.fz, &r.tx, &r.ty, &r.tz, &r.touching, &r.poses,
+                          &r.order_tmp, &r.rank, &r.fx, &r.fy, &r.fz, &r.tx, &r.ty, &r.tz, &r.touching, &r.wet[0], &r.wet[1], &r.poses,
                           &r.owners, &r.blocks, &r.block_sums, &r.dirty})
     total += b->bytes();
   return total;

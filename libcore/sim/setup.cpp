@@ -11,6 +11,7 @@
 #include "common/error.h"
 #include "io/particles_file.h"
 #include "mesh/triangle_box.h"
+#include "rigid/contact.h"
 
 namespace bw::sim {
 namespace {
@@ -50,6 +51,16 @@ constexpr double kContactPenetration = 0.1;  // spacings
 // particle's contact oscillation, so that the dashpot's damping is resolved and the
 // explicit step stays far from its limit (omega dt < 2).
 constexpr double kContactStepFactor = 0.5;
+// An explicit dashpot c damps a contact point of effective mass m stably while
+// c dt / m < 2. A pair's c is 2 zeta m_pair omega, and a corner touching alone has an
+// effective mass down to a quarter of its body's (its lever adds rotation): zeta
+// omega dt <= this keeps c dt / m_eff at 1.5. A scene whose most inelastic solid
+// needs a larger zeta takes shorter contact steps.
+constexpr double kMaxDampingStep = 0.1875;
+// ... but no shorter than this (5 times the steps of kContactStepFactor), zeta then
+// capped at kMaxDampingStep / it: a scene of restitution 0 bounces with about 0.05
+// (docs/scene.md).
+constexpr double kMinContactStep = 0.1;
 // A dynamic solid starts overlapping fluid closer than this fraction of a spacing to
 // one of its boundary particles (fluid rests one spacing from them), and another
 // solid whose particles come closer than this fraction of the contact distance
@@ -603,7 +614,18 @@ Setup prepare(const scene::Scene& s, double end_time) {
     // A particle that hits another solid head-on at the scene's largest speed goes
     // kContactPenetration spacings deep: omega = v / (that depth).
     p.contact_frequency = std::max(p.scene_speed, kMinContactSpeed) / (kContactPenetration * p.spacing);
-    p.contact_dt = kContactStepFactor / p.contact_frequency;
+    // The damping ratio that bounces with the lowest restitution of the scene's solids
+    // as the solver steps it (rigid::damping_ratio_for_step), and the step it allows.
+    double least = 1;
+    for (const SolidMaterial& m : out.materials) least = std::min(least, m.restitution);
+    p.contact_step = kContactStepFactor;
+    for (int k = 0; k < 4; ++k) {
+      const double zeta = rigid::damping_ratio_for_step(least, p.contact_step);
+      if (zeta * p.contact_step <= kMaxDampingStep) break;
+      p.contact_step = std::max(kMinContactStep, kMaxDampingStep / zeta);
+    }
+    p.contact_dt = p.contact_step / p.contact_frequency;
+    p.contact_zeta_max = kMaxDampingStep / p.contact_step;
     check_overlaps(s, out, geometry);
     mark_anchors(out, geometry);
   }

@@ -54,6 +54,8 @@ struct Parameters {
   std::int64_t max_particles = 0;  // MFP
   double contact_frequency = 0; // omega of contacts between bodies (1/s), 0 without bodies
   double contact_dt = 0;        // time-step limit while bodies touch (s), infinity without bodies
+  double contact_step = 0;      // omega contact_dt: what the contacts' damping ratios are tuned to
+  double contact_zeta_max = 0;  // the largest damping ratio stable at that step
   Aabb domain;                  // particles leaving it are removed
   std::array<std::int64_t, 3> grid{0, 0, 0};  // cells of edge h covering the domain
 };

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -92,6 +93,9 @@ struct RigidStage {
   Buffer keys, order, keys_tmp, order_tmp, rank;
   // per particle, master order: force, own torque, contact pairs
   Buffer fx, fy, fz, tx, ty, tz, touching;
+  // per particle, master order: fluid near it at the last step (read) and now (written)
+  std::array<Buffer, 2> wet;
+  int wet_read = 0;
   // tables: poses (per body), owners, blocks, block sums, Psi_b requests (per owner)
   Buffer poses, owners, blocks, block_sums, dirty;
   std::vector<BodyBlock> block_table;
@@ -99,6 +103,7 @@ struct RigidStage {
   bool weights_unknown = true;           // count contacts before the next step (new layout)
   bool touching_now = true;              // contact pairs at the last step (the contact time step)
   bool measure_static = false;
+  std::map<double, double> damping_of;   // damping ratio by restitution (rigid::damping_ratio_for_step)
   Vec3d static_impulse = Vec3d::Zero();  // N s
 };
 

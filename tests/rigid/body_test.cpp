@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "rigid/body.h"
+#include "rigid/contact.h"
 #include "test_support.h"
 
 namespace {
@@ -89,6 +90,33 @@ TEST(RigidBody, TorqueSpinsUpAndPosesMapReferencePoints) {
   EXPECT_NEAR(p.x(), 0.1 * std::cos(angle), 1e-12);
   EXPECT_NEAR(p.y(), 0.1 * std::sin(angle), 1e-12);
   EXPECT_NEAR((body.velocity_at(p) - Vec3d(-p.y(), p.x(), 0)).norm(), 0, 1e-9);
+}
+
+TEST(ContactDamping, ContinuousZetaGivesItsRestitution) {
+  for (const double e : {0.1, 0.3, 0.5, 0.9}) EXPECT_NEAR(bw::rigid::restitution_of(bw::rigid::damping_ratio(e)), e, 1e-12);
+  EXPECT_DOUBLE_EQ(bw::rigid::damping_ratio(1.0), 0.0);
+  EXPECT_DOUBLE_EQ(bw::rigid::damping_ratio(0.0), 1.0);
+}
+
+TEST(ContactDamping, SteppedBounceEndsWithTheRestitutionAskedFor) {
+  // As the simulator steps a contact, the continuous zeta bounces too high (the
+  // clamp that never pulls, and the step); the stepped zeta gives e.
+  for (const double h : {0.41, 0.5}) {
+    EXPECT_GT(bw::rigid::stepped_restitution(bw::rigid::damping_ratio(0.3), h), 0.33);
+    for (const double e : {0.2, 0.3, 0.5, 0.8}) {
+      const double zeta = bw::rigid::damping_ratio_for_step(e, h);
+      EXPECT_NEAR(bw::rigid::stepped_restitution(zeta, h), e, 1e-6) << "e " << e << ", omega dt " << h;
+    }
+  }
+  // With small steps it tends to the clamped continuous bounce, which loses less
+  // than the linear formula says (the dashpot cannot pull at the end of the bounce):
+  // zeta above the continuous one.
+  EXPECT_GT(bw::rigid::damping_ratio_for_step(0.3, 0.01), bw::rigid::damping_ratio(0.3));
+  EXPECT_NEAR(bw::rigid::damping_ratio_for_step(1.0, 0.5), 0.0, 1e-3);
+  // Restitution 0 gets the zeta of the least bounce the step allows.
+  const double least = bw::rigid::stepped_restitution(bw::rigid::damping_ratio_for_step(0.0, 0.5), 0.5);
+  EXPECT_GT(least, 0.0);
+  EXPECT_LT(least, 0.15);
 }
 
 }  // namespace

@@ -68,7 +68,7 @@ TEST(Contact, DroppedBoxBouncesAndComesToRestOnTheFloor) {
   test::figure("jitter over the last 0.2 s (fastest point of the box)", jitter, "m/s");
   test::figure("lateral drift", drift, "m");
   EXPECT_NEAR(-v_in, std::sqrt(2 * 9.81 * 0.05), 0.02);
-  EXPECT_NEAR(restitution, 0.3, 0.1);
+  EXPECT_NEAR(restitution, 0.3, 0.05);
   EXPECT_LT(deepest, 0.3 * kSpacing) << "the floor is one layer of particles";
   EXPECT_LT(std::abs(rest - st.position.z()), 0.01 * kSpacing) << "at rest, g / omega^2 deep";
   EXPECT_LT(jitter, 1e-3);
