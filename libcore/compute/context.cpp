@@ -269,18 +269,22 @@ void Context::launch(Kernel& kernel, std::size_t items) {
       std::size_t local = (kTargetLocalSize + multiple - 1) / multiple * multiple;
       k.local = std::max<std::size_t>(1, std::min(local, limit));
     }
-    const std::size_t global = (items + k.local - 1) / k.local * k.local;
-    const auto start = std::chrono::steady_clock::now();
-    impl_->queue.enqueueNDRangeKernel(k.kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(k.local));
-    if (impl_->profiling) {
-      impl_->queue.finish();
-      KernelTime& t = impl_->times[k.name];
-      t.name = k.name;
-      t.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      ++t.launches;
-    }
+    enqueue(kernel, (items + k.local - 1) / k.local * k.local, k.local);
   } catch (const cl::Error& e) {
     throw_cl_error(e, fmt::format(" (kernel {}, {} items)", k.name, items));
+  }
+}
+
+void Context::enqueue(Kernel& kernel, std::size_t global, std::size_t local) {
+  Kernel::Impl& k = *kernel.impl_;
+  const auto start = std::chrono::steady_clock::now();
+  impl_->queue.enqueueNDRangeKernel(k.kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(local));
+  if (impl_->profiling) {
+    impl_->queue.finish();
+    KernelTime& t = impl_->times[k.name];
+    t.name = k.name;
+    t.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ++t.launches;
   }
 }
 
@@ -292,15 +296,7 @@ void Context::launch_groups(Kernel& kernel, std::size_t groups, std::size_t loca
     const std::size_t limit = k.kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(impl_->device);
     if (local > limit)
       fail_run("kernel {} needs work-groups of {} work-items; the device runs at most {}", k.name, local, limit);
-    const auto start = std::chrono::steady_clock::now();
-    impl_->queue.enqueueNDRangeKernel(k.kernel, cl::NullRange, cl::NDRange(groups * local), cl::NDRange(local));
-    if (impl_->profiling) {
-      impl_->queue.finish();
-      KernelTime& t = impl_->times[k.name];
-      t.name = k.name;
-      t.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      ++t.launches;
-    }
+    enqueue(kernel, groups * local, local);
   } catch (const cl::Error& e) {
     throw_cl_error(e, fmt::format(" (kernel {}, {} groups of {})", k.name, groups, local));
   }

@@ -153,6 +153,9 @@ class Context {
   void reset_kernel_times();
 
  private:
+  // Queues `kernel` over `global` work-items in groups of `local` (profiled when on).
+  void enqueue(Kernel& kernel, std::size_t global, std::size_t local);
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

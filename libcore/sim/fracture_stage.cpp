@@ -60,13 +60,7 @@ void Solver::Impl::enable_fracture(const Setup& setup, const std::vector<int>& b
     tb.frc = b.frc;
     tb.density = b.density;
     tb.voxel_size = b.voxel_size;
-    tb.piece.cells = b.voxel_cells;
-    tb.piece.centers = b.voxel_centers;
-    tb.piece.anchor = b.voxel_anchor;
-    tb.piece.particles = b.particles;
-    tb.piece.normals = b.normals;
-    tb.piece.flatness = b.flatness;
-    tb.piece.particle_cells = b.particle_cells;
+    tb.piece = breakable_piece(b);
     fs.bodies.push_back(std::move(tb));
   }
   for (BreakableBody& tb : fs.bodies)

@@ -388,6 +388,18 @@ std::vector<Vec3d> emitter_points(const scene::Emitter& e, double spacing) {
   return points;
 }
 
+fracture::Piece breakable_piece(const BodySetup& body) {
+  fracture::Piece piece;
+  piece.cells = body.voxel_cells;
+  piece.centers = body.voxel_centers;
+  piece.anchor = body.voxel_anchor;
+  piece.particles = body.particles;
+  piece.normals = body.normals;
+  piece.flatness = body.flatness;
+  piece.particle_cells = body.particle_cells;
+  return piece;
+}
+
 Setup prepare(const scene::Scene& s, double end_time) {
   Setup out;
   Parameters& p = out.params;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/geometry.h"
+#include "fracture/fracture.h"
 #include "io/particles_file.h"
 #include "rigid/body.h"
 #include "scene/scene.h"
@@ -130,6 +131,10 @@ struct Setup {
   std::vector<std::size_t> block_particles;  // fluid particles of each block, in order
   std::int64_t emitter_particles = 0;  // what the emitters inject over the run (before MFP)
 };
+
+// What fracture cuts of a breakable body: its voxels (with their anchor) and its
+// boundary particles, as the solver's fracture stage starts from them.
+fracture::Piece breakable_piece(const BodySetup& body);
 
 // Derives the parameters and builds every initial particle and body. `end_time` is
 // the run's end (the scene's, or the one given on the command line). Throws

@@ -66,12 +66,7 @@ breakable = true
   const scene::Scene scene = scene::load_scene(dir.file("scene.toml"));
   const sim::Setup setup = sim::prepare(scene, scene.time.end);
   compute::Context context(compute::choose_device(device));
-  const sim::BodySetup& slab = setup.bodies.at(0);
-  fracture::Piece piece;
-  piece.cells = slab.voxel_cells;
-  piece.centers = slab.voxel_centers;
-  piece.particles = slab.particles;
-  piece.particle_cells = slab.particle_cells;
+  const fracture::Piece piece = sim::breakable_piece(setup.bodies.at(0));
 
   // Every particle of the top face over its binding energy, the strongest near one
   // corner (an impact there).

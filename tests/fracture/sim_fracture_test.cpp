@@ -172,13 +172,7 @@ struct DryWall {
     std::string text = test::fracture_scene(kGentle, 0.97, kEnd, "[fracture]\nmax_chunks = 500\n");
     text.erase(text.find("[[fluid.block]]"), text.find("[[solid]]") - text.find("[[fluid.block]]"));
     setup = test::prepare_text(dir.file(""), text);
-    const sim::BodySetup& b = setup.bodies.at(0);
-    piece.cells = b.voxel_cells;
-    piece.centers = b.voxel_centers;
-    piece.particles = b.particles;
-    piece.normals = b.normals;
-    piece.flatness = b.flatness;
-    piece.particle_cells = b.particle_cells;
+    piece = sim::breakable_piece(setup.bodies.at(0));
   }
 };
 
