@@ -166,6 +166,10 @@ RunSummary Simulation::run() {
                        {"speed_limit", p.speed_limit},
                        {"max_particles", static_cast<double>(p.max_particles)},
                        {"boundary_particles", static_cast<double>(solver.boundary_count())}};
+  if (solver.body_count() > 0) {
+    record.parameters.emplace_back("contact_frequency", p.contact_frequency);
+    record.parameters.emplace_back("contact_dt", p.contact_dt);
+  }
 
   RunSummary sum;
   sum.device = record.device;
