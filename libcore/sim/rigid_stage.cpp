@@ -254,7 +254,6 @@ void Solver::Impl::upload_layout() {
   // Master indices changed: no particle is known to be wet until the next step.
   const std::vector<std::uint32_t> dry(total, 0u);
   for (Buffer& w : r.wet) ctx.write_vector(w, dry);
-  r.weights_unknown = true;
   r.nb = total;
   nb = total;
   r.layout_dirty = false;
@@ -337,7 +336,6 @@ void Solver::Impl::update_boundary() {
   // time step: a body's contact mass then shares its mass over the pairs it has now,
   // not those of the last step (a face arriving at a floor brings all its pairs at
   // once), and a step that starts touching takes the contact time step.
-  r.weights_unknown = false;
   rigid_forces(-1.0);
   upload_owners();
 }

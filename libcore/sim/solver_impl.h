@@ -100,7 +100,6 @@ struct RigidStage {
   Buffer poses, owners, blocks, block_sums, dirty;
   std::vector<BodyBlock> block_table;
   bool layout_dirty = true;              // bodies or their particles changed
-  bool weights_unknown = true;           // count contacts before the next step (new layout)
   bool touching_now = true;              // contact pairs at the last step (the contact time step)
   bool measure_static = false;
   std::map<double, double> damping_of;   // damping ratio by restitution (rigid::damping_ratio_for_step)
