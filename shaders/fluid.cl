@@ -69,7 +69,7 @@ __kernel void fluid_density(SimParams P, __global const uint* start, __global co
     }
   }
   const float boundary = P.spiky * VSUM(wb);
-  const float r = P.spiky * P.mass * VSUM(wf) + P.gamma1 * boundary;
+  const float r = P.spiky * P.kernel_mass * VSUM(wf) + P.gamma1 * boundary;
   const float p = bw_tait(r, P.rho0, P.stiffness, P.gamma, P.gamma_int);
   rho[i] = r;
   pres[i] = p;
@@ -104,7 +104,7 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
   const float inv_rhoi = 1.0f / rhoi;
   // The boundary terms' own factors, per particle: pressure (gamma2, mirrored p_i)
   // and friction (mu_b), scaled like the fluid terms so that one sum holds all.
-  const float kb = P.gamma2 / (P.mass * P.rho0 * P.rho0) * (pti * P.rho0 * P.rho0 + pti * rhoi * rhoi);
+  const float kb = P.gamma2 / (P.kernel_mass * P.rho0 * P.rho0) * (pti * P.rho0 * P.rho0 + pti * rhoi * rhoi);
   const float kf = P.mu_b * P.visc / P.rho0 * inv_rhoi;
   const int cx = bw_cell_coord(xi, P.ox, P.inv_cell, P.nx);
   const int cy = bw_cell_coord(yi, P.oy, P.inv_cell, P.ny);

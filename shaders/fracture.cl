@@ -47,7 +47,7 @@ __kernel void fracture_load(SimParams P, uint count, float dt, float decay, __gl
           // rigid.cl boundary_forces: the pressure part of the boundary term of j
           const float ptj = pterm[j];
           const float rhoj = rho[j];
-          const float kb = P.gamma2 / (P.mass * P.rho0 * P.rho0) * (ptj * P.rho0 * P.rho0 + ptj * rhoj * rhoj);
+          const float kb = P.gamma2 / (P.kernel_mass * P.rho0 * P.rho0) * (ptj * P.rho0 * P.rho0 + ptj * rhoj * rhoj);
           const float ir = bw_rsqrt1(fmax(r2, min_r2));
           const float q = h - r2 * ir;
           const float c = kb * psi * q * q * ir;

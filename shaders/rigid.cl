@@ -232,7 +232,7 @@ __kernel void boundary_forces(SimParams P, ContactParams C, uint first, uint cou
           // fluid_forces, the boundary term of particle j
           const float ptj = pterm[j];
           const float rhoj = rho[j];
-          const float kb = P.gamma2 / (P.mass * P.rho0 * P.rho0) * (ptj * P.rho0 * P.rho0 + ptj * rhoj * rhoj);
+          const float kb = P.gamma2 / (P.kernel_mass * P.rho0 * P.rho0) * (ptj * P.rho0 * P.rho0 + ptj * rhoj * rhoj);
           const float kf = P.mu_b * P.visc / P.rho0 * (1.0f / rhoj);
           const float ir = bw_rsqrt1(fmax(r2, min_r2));
           const float q = h - r2 * ir;

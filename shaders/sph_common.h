@@ -34,11 +34,12 @@ typedef struct {
   float h, h2;
   float spiky;      // 15 / (pi h^6): W_spiky = spiky (h - r)^3
   float grad_scale; // 1 / c: corrects the spiky gradient's first moment c on the lattice
-  float pressure_scale;   // kp = 3 spiky m / c: pressure term of the force sums
-  float viscosity_scale;  // kv = mu m visc: viscosity term of the force sums
+  float pressure_scale;   // kp = 3 spiky mk / c: pressure term of the force sums
+  float viscosity_scale;  // kv = mu mk visc: viscosity term of the force sums
   float visc;       // 45 / (pi h^6): lap W_visc = visc (h - r)
   // fluid
-  float mass;       // particle mass (kg): a particle inside a full lattice has rho0
+  float mass;       // particle mass (kg): rho0 times the cell it stands for, spacing^3
+  float kernel_mass;  // mk, what the sums weigh a neighbour with: a full lattice sums to rho0
   float rho0;       // rest density (kg/m^3)
   float stiffness;  // Tait k (Pa)
   float gamma;      // Tait exponent

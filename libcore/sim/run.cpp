@@ -151,6 +151,7 @@ RunSummary Simulation::run() {
   record.parameters = {{"spacing", p.spacing},
                        {"smoothing_length", p.h},
                        {"particle_mass", p.mass},
+                       {"kernel_mass", p.kernel_mass},
                        {"rho0", p.rho0},
                        {"stiffness", p.k},
                        {"c0", p.c0},

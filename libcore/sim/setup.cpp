@@ -419,7 +419,8 @@ Setup prepare(const scene::Scene& s, double end_time) {
   p.dt_max = s.time.dt_max;
   p.cfl = s.time.cfl;
   p.force_factor = s.time.force_factor;
-  p.mass = p.rho0 / lattice_kernel_sum(p.spacing, p.h);
+  p.mass = p.rho0 * p.spacing * p.spacing * p.spacing;
+  p.kernel_mass = p.rho0 / lattice_kernel_sum(p.spacing, p.h);
   p.gradient_moment = lattice_gradient_moment(p.spacing, p.h);
   p.domain = s.domain;
   std::int64_t cells = 1;

@@ -38,7 +38,14 @@ double lattice_gradient_moment(double spacing, double h);
 struct Parameters {
   double spacing = 0;
   double h = 0;                 // support radius
-  double mass = 0;              // rho0 / lattice_kernel_sum: a full lattice has rho0
+  // A particle is the fluid of one cell of the sampling lattice: mass rho0 spacing^3,
+  // in its momentum, its energy and the forces it exchanges with solids. The SPH sums
+  // weigh it with kernel_mass instead, for which a full lattice sums to rho0 (the
+  // lattice sum of W_spiky at h = 2 spacings is 24% above its integral; weighed with
+  // the mass, water would rest at 0.81 rho0 of mass per volume, and bodies would
+  // float in it as in a liquid of that density).
+  double mass = 0;
+  double kernel_mass = 0;       // rho0 / lattice_kernel_sum
   double gradient_moment = 1;   // lattice_gradient_moment: pressure forces are divided by it
   double rho0 = 0;
   double k = 0;                 // Tait stiffness (Pa)

@@ -37,10 +37,11 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   P.h2 = static_cast<float>(p.h * p.h);
   P.spiky = static_cast<float>(15.0 / (pi * std::pow(p.h, 6)));
   P.grad_scale = static_cast<float>(1.0 / p.gradient_moment);
-  P.pressure_scale = static_cast<float>(3.0 * 15.0 / (pi * std::pow(p.h, 6)) * p.mass / p.gradient_moment);
-  P.viscosity_scale = static_cast<float>(p.mu * p.mass * 45.0 / (pi * std::pow(p.h, 6)));
+  P.pressure_scale = static_cast<float>(3.0 * 15.0 / (pi * std::pow(p.h, 6)) * p.kernel_mass / p.gradient_moment);
+  P.viscosity_scale = static_cast<float>(p.mu * p.kernel_mass * 45.0 / (pi * std::pow(p.h, 6)));
   P.visc = static_cast<float>(45.0 / (pi * std::pow(p.h, 6)));
   P.mass = static_cast<float>(p.mass);
+  P.kernel_mass = static_cast<float>(p.kernel_mass);
   P.rho0 = static_cast<float>(p.rho0);
   P.stiffness = static_cast<float>(p.k);
   P.gamma = static_cast<float>(p.gamma);

@@ -109,7 +109,7 @@ Reference brute_force(const Solver::Snapshot& S, const Parameters& P) {
     double sf = 0, sb = 0;
     for (std::size_t j = 0; j < n; ++j) sf += ws((fx(i) - fx(j)).squaredNorm());
     for (std::size_t b = 0; b < nb; ++b) sb += R.psi[b] * ws((fx(i) - bxv(b)).squaredNorm());
-    R.rho[i] = P.mass * sf + P.gamma1 * sb;
+    R.rho[i] = P.kernel_mass * sf + P.gamma1 * sb;
     R.p[i] = std::max(0.0, P.k * (std::pow(R.rho[i] / P.rho0, P.gamma) - 1));
   }
   R.a.assign(n, P.gravity);
@@ -122,8 +122,8 @@ Reference brute_force(const Solver::Snapshot& S, const Parameters& P) {
       if (j == i || r >= h) continue;
       const double Pj = R.p[j] / (R.rho[j] * R.rho[j]);
       const Vec3d vj(S.vx[j], S.vy[j], S.vz[j]);
-      R.a[i] += -P.mass * (Pi + Pj) * grad_s(x) / P.gradient_moment +
-                P.mu / R.rho[i] * P.mass * (vj - vi) / R.rho[j] * visc * (h - r);
+      R.a[i] += -P.kernel_mass * (Pi + Pj) * grad_s(x) / P.gradient_moment +
+                P.mu / R.rho[i] * P.kernel_mass * (vj - vi) / R.rho[j] * visc * (h - r);
     }
     for (std::size_t b = 0; b < nb; ++b) {
       const Vec3d x = fx(i) - bxv(b);
@@ -180,7 +180,7 @@ TEST(Fluid, DensityAndForcesEqualBruteForce) {
   EXPECT_GT(p_scale, 0) << "the jittered block must be under pressure somewhere";
 }
 
-TEST(Fluid, FullLatticeHasRestDensity) {
+TEST(Fluid, FullLatticeHasRestDensityAndBlocksWeighRho0PerVolume) {
   test::TempDir dir;
   std::ofstream(dir.file("scene.toml")) << "spacing = 0.01\n[time]\nend = 0.1\n[domain]\nmin = [0, 0, 0]\n"
                                            "max = [0.2, 0.2, 0.2]\n[fluid]\nc0 = 20\n[[fluid.block]]\n"
@@ -204,6 +204,14 @@ TEST(Fluid, FullLatticeHasRestDensity) {
   test::figure("interior particles", static_cast<double>(interior));
   test::figure("largest |rho/rho0 - 1| inside a full lattice", worst);
   EXPECT_LT(worst, 1e-5);
+  // And the block weighs rho0 times its volume: the particle mass is rho0 spacing^3,
+  // the kernel mass (what the density sum weighs with) is not (docs/scene.md,
+  // "Physics"). With the kernel mass, water weighed 0.81 rho0 and bodies floated low.
+  const double mass = setup.params.mass * static_cast<double>(setup.fluid.size());
+  test::figure("block mass / (rho0 x its volume)", mass / (setup.params.rho0 * 1e-3));
+  EXPECT_NEAR(mass, setup.params.rho0 * 1e-3, 1e-9);
+  EXPECT_NEAR(setup.params.kernel_mass, setup.params.rho0 / lattice_kernel_sum(0.01, h), 1e-15);
+  EXPECT_LT(setup.params.kernel_mass, 0.82 * setup.params.mass);
 }
 
 TEST(Fluid, FluidNextToAFlatWallHasRestDensity) {
