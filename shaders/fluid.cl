@@ -209,18 +209,19 @@ __kernel void fluid_integrate(SimParams P, uint n, float dt, __global float* x, 
 // Per block of `chunk` particles (all n particles of the step, including those that
 // left the domain and sort after start[ncells]): the largest speed and acceleration
 // (for the time step) and the fastest particle and the first with a non-finite value
-// (for the guard). Accelerations and densities exist only for the live particles.
-__kernel void fluid_step_reduce(uint n, uint chunk, uint nblocks, uint ncells, __global const uint* start,
+// (for the guard), and the power the emitters put into the particles they hold.
+// Accelerations and densities exist only for the live particles.
+__kernel void fluid_step_reduce(uint n, uint chunk, uint nblocks, uint ncells, float mass, __global const uint* start,
                                 __global const float* x, __global const float* y, __global const float* z,
                                 __global const float* vx, __global const float* vy, __global const float* vz,
                                 __global const float* ax, __global const float* ay, __global const float* az,
-                                __global const float* rho, __global StepReduce* out) {
+                                __global const float* rho, __global const uint* hold, __global StepReduce* out) {
   const uint b = get_global_id(0);
   if (b >= nblocks) return;
   const uint live = start[ncells];
   const uint begin = b * chunk;
   const uint end = min(begin + chunk, n);
-  float max_v2 = 0.0f, max_a2 = 0.0f;
+  float max_v2 = 0.0f, max_a2 = 0.0f, held_power = 0.0f;
   int fastest = -1, bad = -1;
   for (uint i = begin; i < end; ++i) {
     const float v2 = vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i];
@@ -239,12 +240,16 @@ __kernel void fluid_step_reduce(uint n, uint chunk, uint nblocks, uint ncells, _
       fastest = (int)i;
     }
     max_a2 = fmax(max_a2, a2);
+    // A held particle keeps its velocity whatever the forces on it (fluid_integrate):
+    // its emitter supplies -m a, at the power -m a.v.
+    if (i < live && hold[i] > 0u) held_power -= mass * (ax[i] * vx[i] + ay[i] * vy[i] + az[i] * vz[i]);
   }
   StepReduce r;
   r.max_v2 = max_v2;
   r.max_a2 = max_a2;
   r.fastest = fastest;
   r.bad = bad;
+  r.held_power = held_power;
   out[b] = r;
 }
 

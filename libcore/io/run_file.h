@@ -45,6 +45,7 @@ struct FrameStats {
   double wall_time = 0;           // seconds since the start of the run
   double elastic_energy = 0;      // J, stored by compression (Tait law)
   double speed_max = 0;           // m/s, fastest fluid particle
+  double emitted_energy = 0;      // J the emitters have put in since the start
 };
 
 struct FractureEvent {

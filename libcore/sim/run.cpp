@@ -205,6 +205,7 @@ RunSummary Simulation::run() {
     row.potential_energy = st.potential + st.body_potential;
     row.elastic_energy = st.elastic;
     row.speed_max = st.speed_max;
+    row.emitted_energy = st.emitted;
     row.wall_time = clock.seconds();
     record.frames.push_back(row);
     // Bodies, including those added since the last frame (rows are never reused).
@@ -225,7 +226,9 @@ RunSummary Simulation::run() {
     }
     record.fractures = solver.fracture_events();
 
-    const double energy = row.kinetic_energy + row.potential_energy + st.elastic;
+    // What the scene holds beyond what its emitters put in: without losses, constant.
+    const double energy = row.kinetic_energy + row.potential_energy + st.elastic - st.emitted;
+    sum.emitted_energy = st.emitted;
     if (f == 0) {
       sum.energy_start = energy;
       sum.energy_highest = energy;
@@ -301,12 +304,14 @@ RunSummary Simulation::run() {
   return sum;
 }
 
+double RunSummary::energy_scale() const { return std::max(std::abs(energy_start), emitted_energy); }
+
 double RunSummary::energy_drift() const {
-  return energy_start != 0 ? (energy_end - energy_start) / std::abs(energy_start) : 0;
+  return energy_scale() > 0 ? (energy_end - energy_start) / energy_scale() : 0;
 }
 
 double RunSummary::energy_growth() const {
-  return energy_start != 0 ? (energy_highest - energy_start) / std::abs(energy_start) : 0;
+  return energy_scale() > 0 ? (energy_highest - energy_start) / energy_scale() : 0;
 }
 
 std::vector<std::pair<std::string, double>> summary_values(const RunSummary& r) {
@@ -324,7 +329,8 @@ std::vector<std::pair<std::string, double>> summary_values(const RunSummary& r) 
           {"energy_highest", r.energy_highest},
           {"energy_drift", r.energy_drift()},
           {"energy_growth", r.energy_growth()},
-          {"energy_largest_rise", r.energy_max_rise}};
+          {"energy_largest_rise", r.energy_max_rise},
+          {"energy_emitted", r.emitted_energy}};
 }
 
 std::string format_summary(const RunSummary& r) {
@@ -346,8 +352,13 @@ std::string format_summary(const RunSummary& r) {
           ? fmt::format("at most {:+.3f}% above it (largest rise between frames {:.3g} J)", 100 * r.energy_growth(),
                         r.energy_max_rise)
           : std::string("never above it");
-  out += fmt::format("  energy       {:.6g} J -> {:.6g} J: drift {:+.2f}% of the initial total, {}\n", r.energy_start,
-                     r.energy_end, 100 * r.energy_drift(), growth);
+  if (r.emitted_energy > 0)
+    out += fmt::format("  energy       {:.6g} J -> {:.6g} J beyond the {:.6g} J the emitters put in: drift {:+.2f}% of "
+                       "the larger of the two, {}\n",
+                       r.energy_start, r.energy_end, r.emitted_energy, 100 * r.energy_drift(), growth);
+  else
+    out += fmt::format("  energy       {:.6g} J -> {:.6g} J: drift {:+.2f}% of the initial total, {}\n", r.energy_start,
+                       r.energy_end, 100 * r.energy_drift(), growth);
   out += fmt::format("  device       {}, {} ({:.0f} bytes per fluid particle)\n", r.device, human_bytes(r.device_bytes),
                      r.capacity > 0 ? static_cast<double>(r.device_bytes) / static_cast<double>(r.capacity) : 0.0);
   return out;

@@ -275,13 +275,14 @@ StepInfo Solver::step(double t_target) {
 
   std::uint32_t chunk = 0;
   const std::uint32_t blocks = s.reduce_blocks(s.n, chunk);
-  s.step_reduce.args(s.n, chunk, blocks, s.ncells, s.start, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.ax,
-                     s.ay, s.az, s.rho, s.step_out);
+  s.step_reduce.args(s.n, chunk, blocks, s.ncells, s.P.mass, s.start, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f],
+                     s.vz[f], s.ax, s.ay, s.az, s.rho, s.hold[f], s.step_out);
   s.ctx.launch(s.step_reduce, blocks);
   const std::vector<StepReduce> parts = s.ctx.read_vector<StepReduce>(s.step_out, blocks);
-  double max_v2 = 0, max_a2 = 0;
+  double max_v2 = 0, max_a2 = 0, held_power = 0;
   int fastest = -1, bad = -1;
   for (const StepReduce& r : parts) {
+    held_power += r.held_power;
     if (r.bad >= 0 && bad < 0) bad = r.bad;
     if (r.fastest >= 0 && (fastest < 0 || r.max_v2 > max_v2)) {
       max_v2 = r.max_v2;
@@ -336,6 +337,7 @@ StepInfo Solver::step(double t_target) {
                    s.az, s.phi, s.bstart, s.bx, s.by, s.bz, s.bnx, s.bny, s.bnz, s.bvx, s.bvy, s.bvz, s.hold[f],
                    s.emitter_table);
   s.ctx.launch(s.integrate, s.n);
+  s.emitted_energy += held_power * dt;
   if (s.rigid) s.step_bodies(dt);
   s.grid_valid = false;
   s.t = lands ? t_target : s.t + dt;
@@ -388,6 +390,7 @@ FluidStats Solver::stats() {
   s.settle_count();
   FluidStats out;
   out.fluid = s.n;
+  out.emitted = s.emitted_energy;
   s.body_energies(out.body_kinetic, out.body_potential);
   if (s.n == 0) return out;
   std::uint32_t chunk = 0;

@@ -60,6 +60,9 @@ struct FluidStats {
   double speed_max = 0;
   std::int64_t fluid = 0;
   double body_kinetic = 0, body_potential = 0;  // J, of the active bodies (potential as the fluid's)
+  // J the emitters have put in since the start: the kinetic and potential energy of
+  // the particles they made, and the work of holding them at their speed.
+  double emitted = 0;
 };
 
 // A rigid body to add to a running solver (a dynamic solid at the start, a fragment

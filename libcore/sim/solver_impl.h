@@ -141,6 +141,7 @@ struct Solver::Impl {
   std::int64_t steps = 0;
   std::uint32_t n = 0;          // particles in the arrays (live, plus any to be removed)
   std::int64_t removed = 0;
+  double emitted_energy = 0;  // FluidStats::emitted
   std::uint32_t next_id = 0;
   bool grid_valid = false;
 
@@ -278,6 +279,10 @@ struct Solver::Impl {
           const double offset = travelled - static_cast<double>(layer + 1) * params.spacing;
           const Vec3d o = em.normal * offset;
           const Vec3d v = em.normal * em.speed;
+          // Their energy, as fluid_frame_reduce counts it (elastic: none, on the lattice).
+          const Vec3d origin = params.domain.min;
+          for (std::uint32_t k = 0; k < count; ++k)
+            emitted_energy += params.mass * (0.5 * v.squaredNorm() - params.gravity.dot(em.points[k] + o - origin));
           const int f = front;
           emit.args(count, n, next_id, emitter_first_point[e], static_cast<std::uint32_t>(e), ex, ey, ez,
                     static_cast<float>(o.x()), static_cast<float>(o.y()), static_cast<float>(o.z()),

@@ -25,7 +25,10 @@ double parameter(const RunRecord& run, const std::string& name, const std::strin
   fail_input("{}: the run file has no parameter '{}'", where, name);
 }
 
-double total_energy(const FrameStats& s) { return s.kinetic_energy + s.potential_energy + s.elastic_energy; }
+// Beyond what the emitters put in (sim/run.cpp's energy).
+double total_energy(const FrameStats& s) {
+  return s.kinetic_energy + s.potential_energy + s.elastic_energy - s.emitted_energy;
+}
 
 // The voxels of one body of a run: its root solid's sampling grid and placement, its
 // cells, and where they lie in the reference configuration.
@@ -151,7 +154,8 @@ RunIndicators read_indicators(const std::string& run_dir) {
     r.density_error_worst = std::max(r.density_error_worst, s.density_error_max);
     highest = std::max(highest, total_energy(s));
   }
-  const double scale = std::abs(e0) > 0 ? std::abs(e0) : 1.0;
+  // The larger of the initial total and what the emitters put in (sim::RunSummary).
+  const double scale = std::max(std::abs(e0), last.emitted_energy) > 0 ? std::max(std::abs(e0), last.emitted_energy) : 1.0;
   r.energy_drift = (total_energy(last) - e0) / scale;
   r.energy_growth = (highest - e0) / scale;
   r.spacing = parameter(run, "spacing", path);
