@@ -35,6 +35,7 @@ struct Sample {
   double bottom = 0, sides = 0, top = 0;  // upward force on the box's faces (N)
   Columns load;                           // floor load per column (N)
   double packing = 0;                     // particles per spacing^3 beside the box
+  double level_beside = 0;                // the level over the columns beside the box (m)
 };
 
 Sample measure(sim::Solver& solver, double s, double level) {
@@ -104,10 +105,12 @@ Sample measure(sim::Solver& solver, double s, double level) {
   // Columns well under the box (at least 2 cm inside its edges) and well beside it
   // (at least 1 cm from the box and from the tank's walls).
   std::vector<int> count(static_cast<std::size_t>(n * n), 0);
+  std::vector<double> top(static_cast<std::size_t>(n * n), 0.0);
   for (std::size_t i = 0; i < nf; ++i) {
     const int cx = std::clamp(static_cast<int>(d.x[i] / s), 0, n - 1);
     const int cy = std::clamp(static_cast<int>(d.y[i] / s), 0, n - 1);
     ++count[static_cast<std::size_t>(cy * n + cx)];
+    top[static_cast<std::size_t>(cy * n + cx)] = std::max(top[static_cast<std::size_t>(cy * n + cx)], double(d.z[i]));
   }
   double particles = 0;
   int under = 0, beside = 0;
@@ -121,11 +124,13 @@ Sample measure(sim::Solver& solver, double s, double level) {
         out.load.under += floor_load[c], ++under;
       } else if (from_box > 0.01 && from_wall >= 0.01) {
         out.load.beside += floor_load[c], particles += count[c], ++beside;
+        out.level_beside += top[c] + 0.5 * s;
       }
     }
   out.load.under /= under;
   out.load.beside /= beside;
   out.packing = particles / beside / (level / s);
+  out.level_beside /= beside;
   return out;
 }
 
@@ -156,6 +161,7 @@ int run(double spacing, double density, double end) {
     mean.load.under += one.load.under / kSamples;
     mean.load.beside += one.load.beside / kSamples;
     mean.packing += one.packing / kSamples;
+    mean.level_beside += one.level_beside / kSamples;
   }
   const double level = level_sum / kSamples;
   const double draft = level - (z_sum / late - 0.5 * kPoolHeight);
@@ -176,6 +182,8 @@ int run(double spacing, double density, double end) {
   test::figure("floor load per column under the box", mean.load.under / particle_weight, "particle weights");
   test::figure("floor load per column beside it", mean.load.beside / particle_weight, "particle weights");
   test::figure("particles per spacing^3 of the water beside the box", mean.packing);
+  test::figure("water level beside the box (columns of the floor loads)", mean.level_beside, "m");
+  test::figure("draft error against that level", (mean.level_beside - (z_sum / late - 0.5 * kPoolHeight) - ideal) / ideal);
   return 0;
 }
 
