@@ -66,6 +66,7 @@ void write_run(const RunRecord& run, const std::string& path) {
   frames.write("elastic_energy", column<double>(f, [](const FrameStats& s) { return s.elastic_energy; }));
   frames.write("speed_max", column<double>(f, [](const FrameStats& s) { return s.speed_max; }));
   frames.write("emitted_energy", column<double>(f, [](const FrameStats& s) { return s.emitted_energy; }));
+  frames.write("outflow_energy", column<double>(f, [](const FrameStats& s) { return s.outflow_energy; }));
 
   // One float64 value per parameter: a one-row table for bw-info.
   h5::Group parameters = root.create_group("parameters");
@@ -168,7 +169,7 @@ RunRecord read_run(const std::string& path) {
   // Columns added after the first files were written: zero when absent.
   auto optional_col = [&](const char* name) { return frames.has(name) ? col(name) : std::vector<double>(nf, 0.0); };
   const auto elastic = optional_col("elastic_energy"), speed = optional_col("speed_max");
-  const auto emitted = optional_col("emitted_energy");
+  const auto emitted = optional_col("emitted_energy"), outflow = optional_col("outflow_energy");
   for (std::size_t i = 0; i < nf; ++i) {
     FrameStats s;
     s.frame = static_cast<std::int32_t>(frame[i]);
@@ -187,6 +188,7 @@ RunRecord read_run(const std::string& path) {
     s.elastic_energy = elastic[i];
     s.speed_max = speed[i];
     s.emitted_energy = emitted[i];
+    s.outflow_energy = outflow[i];
     run.frames.push_back(s);
   }
 

@@ -46,6 +46,7 @@ struct FrameStats {
   double elastic_energy = 0;      // J, stored by compression (Tait law)
   double speed_max = 0;           // m/s, fastest fluid particle
   double emitted_energy = 0;      // J the emitters have put in since the start
+  double outflow_energy = 0;      // J carried out of the domain since the start
 };
 
 struct FractureEvent {

@@ -206,6 +206,7 @@ RunSummary Simulation::run() {
     row.elastic_energy = st.elastic;
     row.speed_max = st.speed_max;
     row.emitted_energy = st.emitted;
+    row.outflow_energy = st.outflow;
     row.wall_time = clock.seconds();
     record.frames.push_back(row);
     // Bodies, including those added since the last frame (rows are never reused).
@@ -226,9 +227,11 @@ RunSummary Simulation::run() {
     }
     record.fractures = solver.fracture_events();
 
-    // What the scene holds beyond what its emitters put in: without losses, constant.
-    const double energy = row.kinetic_energy + row.potential_energy + st.elastic - st.emitted;
+    // What the scene holds and carried out, beyond what its emitters put in: without
+    // losses, constant.
+    const double energy = row.kinetic_energy + row.potential_energy + st.elastic - st.emitted + st.outflow;
     sum.emitted_energy = st.emitted;
+    sum.outflow_energy = st.outflow;
     if (f == 0) {
       sum.energy_start = energy;
       sum.energy_highest = energy;
@@ -330,7 +333,8 @@ std::vector<std::pair<std::string, double>> summary_values(const RunSummary& r) 
           {"energy_drift", r.energy_drift()},
           {"energy_growth", r.energy_growth()},
           {"energy_largest_rise", r.energy_max_rise},
-          {"energy_emitted", r.emitted_energy}};
+          {"energy_emitted", r.emitted_energy},
+          {"energy_outflow", r.outflow_energy}};
 }
 
 std::string format_summary(const RunSummary& r) {
@@ -352,13 +356,12 @@ std::string format_summary(const RunSummary& r) {
           ? fmt::format("at most {:+.3f}% above it (largest rise between frames {:.3g} J)", 100 * r.energy_growth(),
                         r.energy_max_rise)
           : std::string("never above it");
-  if (r.emitted_energy > 0)
-    out += fmt::format("  energy       {:.6g} J -> {:.6g} J beyond the {:.6g} J the emitters put in: drift {:+.2f}% of "
-                       "the larger of the two, {}\n",
-                       r.energy_start, r.energy_end, r.emitted_energy, 100 * r.energy_drift(), growth);
-  else
-    out += fmt::format("  energy       {:.6g} J -> {:.6g} J: drift {:+.2f}% of the initial total, {}\n", r.energy_start,
-                       r.energy_end, 100 * r.energy_drift(), growth);
+  std::string terms;  // what the total counts besides the fluid's and bodies' energy
+  if (r.emitted_energy > 0) terms += fmt::format(", less the {:.6g} J the emitters put in", r.emitted_energy);
+  if (r.outflow_energy != 0) terms += fmt::format(", with the {:.6g} J carried out of the domain", r.outflow_energy);
+  out += fmt::format("  energy       {:.6g} J -> {:.6g} J{}: drift {:+.2f}% of the {}, {}\n", r.energy_start, r.energy_end,
+                     terms, 100 * r.energy_drift(),
+                     r.emitted_energy > std::abs(r.energy_start) ? "energy put in" : "initial total", growth);
   out += fmt::format("  device       {}, {} ({:.0f} bytes per fluid particle)\n", r.device, human_bytes(r.device_bytes),
                      r.capacity > 0 ? static_cast<double>(r.device_bytes) / static_cast<double>(r.capacity) : 0.0);
   return out;

@@ -391,6 +391,7 @@ FluidStats Solver::stats() {
   FluidStats out;
   out.fluid = s.n;
   out.emitted = s.emitted_energy;
+  out.outflow = s.outflow_energy;
   s.body_energies(out.body_kinetic, out.body_potential);
   if (s.n == 0) return out;
   std::uint32_t chunk = 0;

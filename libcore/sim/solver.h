@@ -63,6 +63,9 @@ struct FluidStats {
   // J the emitters have put in since the start: the kinetic and potential energy of
   // the particles they made, and the work of holding them at their speed.
   double emitted = 0;
+  // J carried out of the domain by the particles that left it since the start (their
+  // kinetic and potential energy when they left).
+  double outflow = 0;
 };
 
 // A rigid body to add to a running solver (a dynamic solid at the start, a fragment

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -142,6 +143,7 @@ struct Solver::Impl {
   std::uint32_t n = 0;          // particles in the arrays (live, plus any to be removed)
   std::int64_t removed = 0;
   double emitted_energy = 0;  // FluidStats::emitted
+  double outflow_energy = 0;  // FluidStats::outflow
   std::uint32_t next_id = 0;
   bool grid_valid = false;
 
@@ -235,9 +237,26 @@ struct Solver::Impl {
     return live;
   }
 
-  // After a sort: drop the particles that left the domain from the count.
+  // After a sort: drop the particles that left the domain from the count, adding
+  // the kinetic and potential energy they carried out (as fluid_frame_reduce counts
+  // it) to outflow_energy. They sort after the live ones.
   void settle_count() {
     const std::uint32_t live = read_live();
+    if (live < n) {
+      const int f = front;
+      const std::size_t count = n - live;
+      const std::vector<float> px = ctx.read_vector<float>(x[f], count, live), py = ctx.read_vector<float>(y[f], count, live),
+                               pz = ctx.read_vector<float>(z[f], count, live);
+      const std::vector<float> ux = ctx.read_vector<float>(vx[f], count, live),
+                               uy = ctx.read_vector<float>(vy[f], count, live),
+                               uz = ctx.read_vector<float>(vz[f], count, live);
+      const Vec3d origin = params.domain.min;
+      for (std::size_t k = 0; k < count; ++k) {
+        const Vec3d v(ux[k], uy[k], uz[k]), p(px[k], py[k], pz[k]);
+        const double e = params.mass * (0.5 * v.squaredNorm() - params.gravity.dot(p - origin));
+        if (std::isfinite(e)) outflow_energy += e;  // a broken particle is the guard's (step_reduce)
+      }
+    }
     removed += n - live;
     n = live;
   }

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <numbers>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "io/frame_file.h"
@@ -94,6 +95,26 @@ TEST(Emitter, RectangleAndMaxParticles) {
   EXPECT_NEAR(xmax - xmin, 0.04, 2e-3) << "size[1] along up";
 }
 
+// A jet falling from an emitter 0.5 m up, 0.6 m above the domain's floor, for `end`
+// seconds (its first layer reaches the floor after 0.27 s).
+std::string falling_jet(double end) {
+  std::string text = emitter_scene(
+      "shape = \"disc\"\ncenter = [0, 0, 0.5]\nnormal = [0, 0, -1]\nradius = 0.03\nspeed = 1.0\n");
+  text.replace(text.find("gravity = [0, 0, 0]"), 19, "gravity = [0, 0, -9.81]");
+  text.replace(text.find("end = 0.5"), 9, fmt::format("end = {}", end));
+  return text;
+}
+
+// The largest |kinetic + potential + elastic - emitted + outflow| over the frames: what
+// a scene keeps, up to its losses.
+double worst_imbalance(const RunRecord& run) {
+  double worst = 0;
+  for (const FrameStats& s : run.frames)
+    worst = std::max(worst, std::abs(s.kinetic_energy + s.potential_energy + s.elastic_energy - s.emitted_energy +
+                                     s.outflow_energy));
+  return worst;
+}
+
 // What the emitters put in is counted (FrameStats::emitted_energy): the kinetic and
 // potential energy of the particles they make and the work of holding them at their
 // speed. A jet falling freely under gravity then keeps kinetic + potential + elastic
@@ -101,11 +122,7 @@ TEST(Emitter, RectangleAndMaxParticles) {
 TEST(Emitter, FallingJetKeepsItsEnergyBeyondWhatTheEmitterPutIn) {
   test::TempDir dir;
   const double speed = 1.0, end = 0.2;  // the first layer falls 0.4 m of the 0.6 m below the emitter
-  std::string text = emitter_scene(
-      "shape = \"disc\"\ncenter = [0, 0, 0.5]\nnormal = [0, 0, -1]\nradius = 0.03\nspeed = 1.0\n");
-  text.replace(text.find("gravity = [0, 0, 0]"), 19, "gravity = [0, 0, -9.81]");
-  text.replace(text.find("end = 0.5"), 9, "end = 0.2");
-  std::ofstream(dir.file("jet.toml")) << text;
+  std::ofstream(dir.file("jet.toml")) << falling_jet(end);
   const sim::RunSummary summary = test::run_scene(dir.file("jet.toml"), dir.file("out"));
   const RunRecord run = read_run(dir.file("out/run.h5"));
   ASSERT_EQ(summary.removed, 0) << "the jet stays in the domain";
@@ -116,9 +133,7 @@ TEST(Emitter, FallingJetKeepsItsEnergyBeyondWhatTheEmitterPutIn) {
   // floor, the potential's zero), without the work of holding them: the emitter holds
   // each over h = 2 spacings, against gravity and the jet's pressure.
   const double born = static_cast<double>(last.fluid) * m * (0.5 * speed * speed + 9.81 * 0.6);
-  double worst = 0;
-  for (const FrameStats& s : run.frames)
-    worst = std::max(worst, std::abs(s.kinetic_energy + s.potential_energy + s.elastic_energy - s.emitted_energy));
+  const double worst = worst_imbalance(run);
   test::figure("particles", static_cast<double>(last.fluid));
   test::figure("emitted energy", last.emitted_energy, "J");
   test::figure("kinetic and potential energy at birth, no holding", born, "J");
@@ -128,9 +143,30 @@ TEST(Emitter, FallingJetKeepsItsEnergyBeyondWhatTheEmitterPutIn) {
   // Holding the falling particles takes energy from them: without that term the
   // total would read higher than what was put in.
   EXPECT_LT(last.emitted_energy, born);
+  EXPECT_EQ(last.outflow_energy, 0);
   EXPECT_LT(worst, 2e-3 * last.emitted_energy);
   EXPECT_LT(summary.energy_growth(), 1e-3);
   EXPECT_NEAR(summary.emitted_energy, last.emitted_energy, 1e-12);
+}
+
+// Particles leaving the domain take their energy with them (outflow_energy): the same
+// jet, long enough to fall out through the floor, keeps the balance.
+TEST(Emitter, JetLeavingTheDomainCarriesItsEnergyOut) {
+  test::TempDir dir;
+  std::ofstream(dir.file("jet.toml")) << falling_jet(0.45);
+  const sim::RunSummary summary = test::run_scene(dir.file("jet.toml"), dir.file("out"));
+  const RunRecord run = read_run(dir.file("out/run.h5"));
+  const FrameStats& last = run.frames.back();
+  const double worst = worst_imbalance(run);
+  test::figure("particles left the domain", static_cast<double>(summary.removed));
+  test::figure("outflow energy / emitted", last.outflow_energy / last.emitted_energy);
+  test::figure("largest imbalance over the frames / emitted", worst / last.emitted_energy);
+  test::figure("energy drift (run summary)", summary.energy_drift());
+  ASSERT_GT(summary.removed, 100);
+  EXPECT_GT(last.outflow_energy, 0.1 * last.emitted_energy);
+  EXPECT_LT(worst, 2e-3 * last.emitted_energy);
+  EXPECT_LT(summary.energy_growth(), 1e-3);
+  EXPECT_NEAR(summary.outflow_energy, last.outflow_energy, 1e-12);
 }
 
 TEST(Walls, StopParticlesShotAtThemUpToTheSpeedOfSound) {

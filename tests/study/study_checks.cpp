@@ -25,9 +25,9 @@ double parameter(const RunRecord& run, const std::string& name, const std::strin
   fail_input("{}: the run file has no parameter '{}'", where, name);
 }
 
-// Beyond what the emitters put in (sim/run.cpp's energy).
+// With what left the domain, beyond what the emitters put in (sim/run.cpp's energy).
 double total_energy(const FrameStats& s) {
-  return s.kinetic_energy + s.potential_energy + s.elastic_energy - s.emitted_energy;
+  return s.kinetic_energy + s.potential_energy + s.elastic_energy - s.emitted_energy + s.outflow_energy;
 }
 
 // The voxels of one body of a run: its root solid's sampling grid and placement, its
