@@ -136,6 +136,7 @@ TEST(RunFile, RoundTrip) {
   stats.steps = 12;
   stats.kinetic_energy = 1.25;
   stats.emitted_energy = 0.75;
+  stats.outflow_energy = 0.5;
   run.frames = {stats, stats};
   run.frames[1].frame = 1;
   bw::FractureEvent event;
@@ -162,6 +163,7 @@ TEST(RunFile, RoundTrip) {
   EXPECT_EQ(r.frames[0].steps, 12);
   EXPECT_EQ(r.frames[0].kinetic_energy, 1.25);
   EXPECT_EQ(r.frames[0].emitted_energy, 0.75);
+  EXPECT_EQ(r.frames[0].outflow_energy, 0.5);
   ASSERT_EQ(r.fractures.size(), 1u);
   EXPECT_EQ(r.fractures[0].seeds[1], Vec3d(1, 1, 1));
   EXPECT_EQ(r.fractures[0].child_body, (std::vector<std::int32_t>{1, 2}));
