@@ -245,11 +245,9 @@ struct Solver::Impl {
     if (live < n) {
       const int f = front;
       const std::size_t count = n - live;
-      const std::vector<float> px = ctx.read_vector<float>(x[f], count, live), py = ctx.read_vector<float>(y[f], count, live),
-                               pz = ctx.read_vector<float>(z[f], count, live);
-      const std::vector<float> ux = ctx.read_vector<float>(vx[f], count, live),
-                               uy = ctx.read_vector<float>(vy[f], count, live),
-                               uz = ctx.read_vector<float>(vz[f], count, live);
+      auto read = [&](const Buffer& b) { return ctx.read_vector<float>(b, count, live); };
+      const std::vector<float> px = read(x[f]), py = read(y[f]), pz = read(z[f]);
+      const std::vector<float> ux = read(vx[f]), uy = read(vy[f]), uz = read(vz[f]);
       const Vec3d origin = params.domain.min;
       for (std::size_t k = 0; k < count; ++k) {
         const Vec3d v(ux[k], uy[k], uz[k]), p(px[k], py[k], pz[k]);
