@@ -237,9 +237,14 @@ struct Solver::Impl {
     return live;
   }
 
+  // A fluid particle's kinetic and potential energy, as fluid_frame_reduce counts them
+  // (potential relative to the domain's minimum corner).
+  double particle_energy(const Vec3d& position, const Vec3d& velocity) const {
+    return params.mass * (0.5 * velocity.squaredNorm() - params.gravity.dot(position - params.domain.min));
+  }
+
   // After a sort: drop the particles that left the domain from the count, adding
-  // the kinetic and potential energy they carried out (as fluid_frame_reduce counts
-  // it) to outflow_energy. They sort after the live ones.
+  // the energy they carried out to outflow_energy. They sort after the live ones.
   void settle_count() {
     const std::uint32_t live = read_live();
     if (live < n) {
@@ -248,10 +253,8 @@ struct Solver::Impl {
       auto read = [&](const Buffer& b) { return ctx.read_vector<float>(b, count, live); };
       const std::vector<float> px = read(x[f]), py = read(y[f]), pz = read(z[f]);
       const std::vector<float> ux = read(vx[f]), uy = read(vy[f]), uz = read(vz[f]);
-      const Vec3d origin = params.domain.min;
       for (std::size_t k = 0; k < count; ++k) {
-        const Vec3d v(ux[k], uy[k], uz[k]), p(px[k], py[k], pz[k]);
-        const double e = params.mass * (0.5 * v.squaredNorm() - params.gravity.dot(p - origin));
+        const double e = particle_energy(Vec3d(px[k], py[k], pz[k]), Vec3d(ux[k], uy[k], uz[k]));
         if (std::isfinite(e)) outflow_energy += e;  // a broken particle is the guard's (step_reduce)
       }
     }
@@ -296,10 +299,8 @@ struct Solver::Impl {
           const double offset = travelled - static_cast<double>(layer + 1) * params.spacing;
           const Vec3d o = em.normal * offset;
           const Vec3d v = em.normal * em.speed;
-          // Their energy, as fluid_frame_reduce counts it (elastic: none, on the lattice).
-          const Vec3d origin = params.domain.min;
-          for (std::uint32_t k = 0; k < count; ++k)
-            emitted_energy += params.mass * (0.5 * v.squaredNorm() - params.gravity.dot(em.points[k] + o - origin));
+          // Their energy (elastic: none, on the lattice).
+          for (std::uint32_t k = 0; k < count; ++k) emitted_energy += particle_energy(em.points[k] + o, v);
           const int f = front;
           emit.args(count, n, next_id, emitter_first_point[e], static_cast<std::uint32_t>(e), ex, ey, ez,
                     static_cast<float>(o.x()), static_cast<float>(o.y()), static_cast<float>(o.z()),
