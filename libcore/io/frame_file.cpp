@@ -9,6 +9,17 @@ namespace bw {
 namespace {
 
 constexpr const char* kKind = "frame";
+constexpr const char* kStepName = "Step#0";
+
+// The step group of a frame: Step#0, or Step#F (F the frame number) in files written
+// before frames were numbered from 0 inside.
+h5::Group open_step(const h5::File& file, std::int32_t frame) {
+  const h5::Group& root = file.root();
+  if (root.is_group(kStepName)) return root.open_group(kStepName);
+  const std::string old_name = fmt::format("Step#{}", frame);
+  if (!root.is_group(old_name)) fail_input("{}: missing group {} for frame {}", file.name(), kStepName, frame);
+  return root.open_group(old_name);
+}
 
 std::vector<double> flatten(const std::vector<Vec3d>& v) {
   std::vector<double> flat(3 * v.size());
@@ -29,6 +40,24 @@ void read_optional(const h5::Group& step, const char* name, std::size_t n, std::
   std::size_t rows = 0;
   out = step.read_rows<T>(name, 0, &rows);
   if (rows != n) fail_input("{}: holds {} values, expected one per particle ({})", step.where(name), rows, n);
+}
+
+BodyStates read_bodies(const h5::Group& g) {
+  BodyStates b;
+  std::size_t m = 0, rows = 0;
+  b.id = g.read_rows<std::int32_t>("id", 0, &m);
+  auto read3 = [&](const char* name) {
+    auto v = unflatten(g.read_rows<double>(name, 3, &rows));
+    if (rows != m) fail_input("{}: {} rows, expected {}", g.where(name), rows, m);
+    return v;
+  };
+  b.position = read3("position");
+  b.linear_velocity = read3("linear_velocity");
+  b.angular_velocity = read3("angular_velocity");
+  const auto q = g.read_rows<double>("orientation", 4, &rows);
+  if (rows != m) fail_input("{}: {} rows, expected {}", g.where("orientation"), rows, m);
+  for (std::size_t i = 0; i < m; ++i) b.orientation.emplace_back(q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]);
+  return b;
 }
 
 }  // namespace
@@ -59,8 +88,12 @@ void write_frame(const FrameData& f, const std::string& path) {
   h5::Group& root = file.root();
   root.set_attr("frame", f.frame);
   root.set_attr("time", f.time);
-  h5::Group step = root.create_group(fmt::format("Step#{}", f.frame));
+  // H5Part readers (ParaView, VisIt) number a file's steps from 0, so the one step of a
+  // frame file is Step#0 whatever the frame; TimeValue is the name they take times from.
+  h5::Group step = root.create_group(kStepName);
   step.set_attr("time", f.time);
+  step.set_attr("TimeValue", f.time);
+  step.set_attr("frame", f.frame);
   step.write<float>("x", f.x);
   step.write<float>("y", f.y);
   step.write<float>("z", f.z);
@@ -104,9 +137,7 @@ FrameData read_frame(const std::string& path) {
   FrameData f;
   f.frame = root.attr<std::int32_t>("frame");
   f.time = root.attr<double>("time");
-  const std::string step_name = fmt::format("Step#{}", f.frame);
-  if (!root.is_group(step_name)) fail_input("{}: missing group {} for frame {}", file.name(), step_name, f.frame);
-  const h5::Group step = root.open_group(step_name);
+  const h5::Group step = open_step(file, f.frame);
   std::size_t n = 0;
   f.x = step.read_rows<float>("x", 0, &n);
   read_optional(step, "y", n, f.y);
@@ -125,23 +156,35 @@ FrameData read_frame(const std::string& path) {
     read_optional(b, "y", k, f.by);
     read_optional(b, "z", k, f.bz);
   }
+  if (step.is_group("bodies")) f.bodies = read_bodies(step.open_group("bodies"));
+  return f;
+}
+
+FrameHeader read_frame_header(const std::string& path, bool with_bodies) {
+  h5::File file = h5::File::open(path, kKind);
+  const h5::Group& root = file.root();
+  FrameHeader h;
+  h.frame = root.attr<std::int32_t>("frame");
+  h.time = root.attr<double>("time");
+  const h5::Group step = open_step(file, h.frame);
+  h.step = step.path();
+  auto length = [](const h5::Group& g, const char* name) -> std::uint64_t {
+    const h5::Shape shape = g.shape(name);
+    return shape.empty() ? 0 : shape[0];
+  };
+  h.fluid = length(step, "x");
+  h.fields.velocity = step.has("vx");
+  h.fields.density = step.has("rho");
+  h.fields.pressure = step.has("p");
+  h.fields.id = step.has("id");
+  h.fields.boundary = step.is_group("boundary");
+  if (h.fields.boundary) h.boundary = length(step.open_group("boundary"), "x");
   if (step.is_group("bodies")) {
     const h5::Group g = step.open_group("bodies");
-    std::size_t m = 0, rows = 0;
-    f.bodies.id = g.read_rows<std::int32_t>("id", 0, &m);
-    auto read3 = [&](const char* name) {
-      auto v = unflatten(g.read_rows<double>(name, 3, &rows));
-      if (rows != m) fail_input("{}: {} rows, expected {}", g.where(name), rows, m);
-      return v;
-    };
-    f.bodies.position = read3("position");
-    f.bodies.linear_velocity = read3("linear_velocity");
-    f.bodies.angular_velocity = read3("angular_velocity");
-    const auto q = g.read_rows<double>("orientation", 4, &rows);
-    if (rows != m) fail_input("{}: {} rows, expected {}", g.where("orientation"), rows, m);
-    for (std::size_t i = 0; i < m; ++i) f.bodies.orientation.emplace_back(q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]);
+    h.body_count = length(g, "id");
+    if (with_bodies) h.bodies = read_bodies(g);
   }
-  return f;
+  return h;
 }
 
 }  // namespace bw

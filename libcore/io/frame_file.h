@@ -1,5 +1,6 @@
 // Files of kind "frame": one output frame of a simulation, in the H5Part layout
-// (docs/formats.md). Written by bw-sim, read by bw-render and bw-voronoi.
+// (docs/formats.md): one step group, Step#0, whatever the frame number (files of
+// earlier versions named it Step#F and still read). Written by bw-sim, read by bw-render and bw-voronoi.
 #pragma once
 
 #include <cstdint>
@@ -53,6 +54,22 @@ void write_frame(const FrameData& frame, const std::string& path);
 // Reads a frame file ("-" for standard input). Throws InputError naming the file
 // when it is not a frame or its arrays disagree in length.
 FrameData read_frame(const std::string& path);
+
+// What a frame file holds, without its particles: for indexes and listings.
+struct FrameHeader {
+  std::int32_t frame = 0;
+  double time = 0;
+  std::string step;             // the step group, "/Step#0" (or "/Step#F" in older files)
+  std::uint64_t fluid = 0;      // fluid particles
+  std::uint64_t boundary = 0;   // boundary particles (field "boundary")
+  std::uint64_t body_count = 0; // rows of the bodies group
+  FrameFields fields;
+  BodyStates bodies;            // read only when asked for
+};
+
+// Reads the attributes and dataset shapes of a frame file, and its body states when
+// `with_bodies`. Throws InputError naming the file as read_frame does.
+FrameHeader read_frame_header(const std::string& path, bool with_bodies = false);
 
 // "frames/000042.h5" for frame 42 under `folder`.
 std::string frame_file_name(const std::string& folder, int frame);

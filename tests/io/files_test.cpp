@@ -4,8 +4,10 @@
 #include "common/error.h"
 #include "io/fragments_file.h"
 #include "io/frame_file.h"
+#include "io/h5.h"
 #include "io/particles_file.h"
 #include "io/run_file.h"
+#include "io/run_index.h"
 #include "test_support.h"
 
 namespace {
@@ -100,6 +102,83 @@ TEST(FrameFile, RoundTripWithBodies) {
   EXPECT_EQ(r.bodies.orientation[1].coeffs(), f.bodies.orientation[1].coeffs());
   EXPECT_EQ(r.bodies.angular_velocity[1], Vec3d(0, 1, 0));
   EXPECT_TRUE(r.fields().velocity && r.fields().density && !r.fields().pressure && r.fields().id);
+}
+
+// H5Part readers number steps from 0: frame 42's one step is Step#0, with the frame
+// number and the time (TimeValue, the name ParaView reads) as attributes.
+TEST(FrameFile, OneStepNamedStep0WhateverTheFrame) {
+  TempDir dir;
+  bw::FrameData f;
+  f.frame = 42;
+  f.time = 1.75;
+  f.x = f.y = f.z = {1, 2};
+  f.bodies.id = {0};
+  f.bodies.position = {{1, 2, 3}};
+  f.bodies.orientation = {Eigen::Quaterniond::Identity()};
+  f.bodies.linear_velocity = f.bodies.angular_velocity = {{0, 0, 0}};
+  const std::string path = bw::frame_file_name(dir.path(), 42);
+  bw::write_frame(f, path);
+  const bw::h5::File file = bw::h5::File::open(path, "frame");
+  EXPECT_EQ(file.root().children(), std::vector<std::string>{"Step#0"});
+  const bw::h5::Group step = file.root().open_group("Step#0");
+  EXPECT_EQ(step.attr<double>("TimeValue"), 1.75);
+  EXPECT_EQ(step.attr<double>("time"), 1.75);
+  EXPECT_EQ(step.attr<std::int32_t>("frame"), 42);
+  const bw::FrameHeader h = bw::read_frame_header(path, true);
+  EXPECT_EQ(h.frame, 42);
+  EXPECT_EQ(h.step, "/Step#0");
+  EXPECT_EQ(h.fluid, 2u);
+  EXPECT_EQ(h.body_count, 1u);
+  ASSERT_EQ(h.bodies.size(), 1u);
+  EXPECT_EQ(h.bodies.position[0], Vec3d(1, 2, 3));
+  EXPECT_FALSE(h.fields.velocity || h.fields.boundary);
+}
+
+// Frame files of earlier versions named their step Step#F: they still read.
+TEST(FrameFile, OlderLayoutWithStepNamedAfterTheFrameReads) {
+  TempDir dir;
+  const std::string path = dir.file("000007.h5");
+  {
+    bw::h5::File file = bw::h5::File::create(path, "frame");
+    file.root().set_attr("frame", std::int32_t{7});
+    file.root().set_attr("time", 0.35);
+    bw::h5::Group step = file.root().create_group("Step#7");
+    step.set_attr("time", 0.35);
+    for (const char* c : {"x", "y", "z", "rho"}) step.write<float>(c, std::vector<float>{1, 2, 3});
+    file.commit();
+  }
+  const bw::FrameData r = bw::read_frame(path);
+  EXPECT_EQ(r.frame, 7);
+  EXPECT_EQ(r.time, 0.35);
+  EXPECT_EQ(r.x, (std::vector<float>{1, 2, 3}));
+  EXPECT_EQ(r.rho, (std::vector<float>{1, 2, 3}));
+  const bw::FrameHeader h = bw::read_frame_header(path);
+  EXPECT_EQ(h.step, "/Step#7");
+  EXPECT_EQ(h.fluid, 3u);
+  EXPECT_TRUE(h.fields.density);
+  // The index points at the step the file has.
+  bw::RunIndex index;
+  index.frames.push_back(bw::index_frame(h, "frames/000007.h5"));
+  EXPECT_NE(bw::xdmf_text(index).find("frames/000007.h5:/Step#7/rho"), std::string::npos);
+}
+
+// A frame file without its step group is refused, naming the file and the group.
+TEST(FrameFile, MissingStepIsRefusedNamingTheFile) {
+  TempDir dir;
+  const std::string path = dir.file("000003.h5");
+  {
+    bw::h5::File file = bw::h5::File::create(path, "frame");
+    file.root().set_attr("frame", std::int32_t{3});
+    file.root().set_attr("time", 0.1);
+    file.commit();
+  }
+  try {
+    bw::read_frame(path);
+    FAIL() << "read";
+  } catch (const bw::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("Step#0"), std::string::npos) << e.what();
+  }
 }
 
 TEST(RunFile, RoundTrip) {
