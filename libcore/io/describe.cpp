@@ -77,7 +77,8 @@ void describe_particles(const h5::Group& root, Report& out) {
   add_bounds(positions, out);
 }
 
-// H5Part: groups Step#N with 1-D datasets x, y, z (and optional fields).
+// H5Part: groups Step#N with 1-D datasets x, y, z (and optional fields); a frame file
+// has one, Step#0 (Step#F, F the frame, in files of earlier versions).
 void describe_steps(const h5::Group& root, Report& out) {
   for (const std::string& name : root.children()) {
     if (name.rfind("Step#", 0) != 0 || !root.is_group(name)) continue;
@@ -137,6 +138,25 @@ void describe_fragments(const h5::Group& root, Report& out) {
   add_bounds(root.read_rows<double>("vertices", 3, &rows), out);
 }
 
+// Placed meshes for the run index: counts, not the triangles.
+void describe_meshes(const h5::Group& root, Report& out) {
+  auto rows = [](const h5::Group& g, const char* name) -> std::int64_t {
+    const h5::Shape shape = g.shape(name);
+    return shape.empty() ? 0 : static_cast<std::int64_t>(shape[0]);
+  };
+  if (root.is_group("static")) out.set("static_triangles", rows(root.open_group("static"), "triangles"));
+  std::int64_t frames = 0, most = 0;
+  if (root.is_group("frames")) {
+    const h5::Group g = root.open_group("frames");
+    for (const std::string& name : g.children()) {
+      ++frames;
+      most = std::max(most, rows(g.open_group(name), "triangles"));
+    }
+  }
+  out.set("frames", frames);
+  out.set("body_triangles_max", most);
+}
+
 // A group of 1-D datasets of equal length is shown as a table, one row per element.
 bool describe_table(const h5::Group& group, const std::string& key, Report& out) {
   std::vector<std::string> columns;
@@ -177,6 +197,8 @@ Report describe_file(const std::string& path, const DescribeOptions& options) {
     describe_steps(root, summary);
   } else if (file.kind() == "fragments") {
     describe_fragments(root, summary);
+  } else if (file.kind() == "meshes") {
+    describe_meshes(root, summary);
   } else {
     // run, fragments and later kinds: every group of equal-length columns is a table.
     for (const std::string& name : root.children()) {

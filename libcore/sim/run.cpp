@@ -15,6 +15,7 @@
 #include "common/text.h"
 #include "io/frame_file.h"
 #include "io/run_file.h"
+#include "io/run_index.h"
 
 namespace bw::sim {
 namespace fs = std::filesystem;
@@ -184,12 +185,17 @@ RunSummary Simulation::run() {
   const int frames = last_frame(s.end_time, p.frame_rate);
   double previous_energy = 0;
   double mean_error_sum = 0;
+  RunIndex index;  // the frames written so far, for OUTDIR/run.xdmf2
+  const std::string index_path = run_index_path(out.string());
 
   auto write_frame_now = [&](int f, double dt_lo, double dt_hi) {
     const FluidStats st = solver.stats();
     FrameData data = solver.frame(scene.fields, f);
     data.time = f / p.frame_rate;
     write_frame(data, frame_file_name(frames_dir.string(), f));
+    // ParaView opens the run so far as one time series (docs/formats.md, "The run index").
+    index.frames.push_back(index_frame(data, frame_file_name("frames", f)));
+    write_run_index(index, index_path);
     FrameStats row;
     row.frame = f;
     row.time = data.time;
