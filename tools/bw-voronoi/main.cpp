@@ -4,6 +4,7 @@
 
 #include "cli/tool.h"
 #include "common/terminal.h"
+#include "io/run_index.h"
 #include "voronoi/check.h"
 #include "voronoi/replay.h"
 
@@ -29,7 +30,22 @@ struct ReplayArgs {
   std::string export_format = "obj";
   bool json = false;
   int threads = 0;
+  bool index = false;
 };
+
+struct IndexArgs {
+  std::string run;
+  std::string fragments;
+};
+
+std::string index_text(const bw::MeshesReport& r) {
+  std::string text = fmt::format("index: {} ({} frames, {} static triangles, up to {} body triangles a frame)\n",
+                                 r.path, r.frames, r.static_triangles, r.body_triangles);
+  if (r.bodies_without_mesh > 0)
+    text += fmt::format("index: up to {} bodies a frame have no mesh (give the fragments file of replay)\n",
+                        r.bodies_without_mesh);
+  return text;
+}
 
 void print(const std::string& text, bool to_stderr) { std::fputs(text.c_str(), to_stderr ? stderr : stdout); }
 
@@ -44,7 +60,8 @@ int main(int argc, char** argv) {
                  "  bw-voronoi check wall.h5 --seeds seeds.txt -o wall_fragments.h5 --export wall_fragments/\n"
                  "  bw-voronoi check plate.obj --seeds old_fragments.h5 --json > report.json\n"
                  "  bw-sample dam.obj --spacing 0.02 -o - | bw-voronoi check - --random 50\n"
-                 "  bw-voronoi replay out/dam/run.h5 -o out/dam/fragments.h5\n"
+                 "  bw-voronoi replay out/dam/run.h5 -o out/dam/fragments.h5 --index\n"
+                 "  bw-voronoi index out/box/run.h5\n"
                  "Exit status: 0 every check passed, 3 a check failed, 2 bad usage or input, 1 failure.\n");
   app.require_subcommand(1);
 
@@ -81,11 +98,28 @@ int main(int argc, char** argv) {
   replay->add_option("--export-format", p.export_format, "Mesh format of --export")
       ->check(CLI::IsMember({"obj", "ply"}));
   replay->add_flag("--json", p.json, "Print the report as JSON");
+  replay->add_flag("--index", p.index,
+                   "Then place every body's mesh in every frame (OUTDIR/meshes.h5) and add them to the run's "
+                   "ParaView index OUTDIR/run.xdmf2 (as bw-voronoi index does)");
   replay->add_option("--threads", p.threads, "Worker threads (default: one per hardware thread)")
       ->check(CLI::NonNegativeNumber);
 
+  IndexArgs x;
+  CLI::App* index = app.add_subcommand(
+      "index", "Place the solids' and bodies' meshes in every frame of a run (OUTDIR/meshes.h5) and rewrite its "
+               "ParaView index OUTDIR/run.xdmf2 with them");
+  index->add_option("run", x.run, "Run file written by bw-sim (OUTDIR/run.h5), beside its frames folder")->required();
+  index->add_option("--fragments", x.fragments,
+                    "Fragments file of bw-voronoi replay: the meshes of the bodies that fracture created");
+
   return bw::cli::run(app, argc, argv, [&] {
+    if (*index) {
+      print(index_text(bw::write_run_meshes(x.run, x.fragments)), false);
+      return bw::kExitOk;
+    }
     if (*replay) {
+      if (p.index && (p.output == "-" || p.run == "-"))
+        throw bw::InputError("replay --index: the run and fragments files must be files, not -");
       bw::voronoi::ReplayOptions options;
       options.source = p.run;
       options.threads = p.threads;
@@ -98,6 +132,7 @@ int main(int argc, char** argv) {
       bw::write_fragments(set, p.output);
       if (!p.export_dir.empty()) bw::voronoi::export_fragments(set.fragments, p.export_dir, p.export_format);
       print(p.json ? result.report().to_json() + "\n" : result.text(), p.output == "-");
+      if (p.index) print(index_text(bw::write_run_meshes(p.run, p.output)), false);
       return result.passed() ? bw::kExitOk : bw::kExitCheckFailed;
     }
     if (!*seeds && !*random) throw bw::InputError("check: give the seeds with --seeds FILE or --random N");
