@@ -21,6 +21,8 @@ packages=(
   googletest libgtest-dev
   # videos and plots of the studies
   ffmpeg gnuplot-nox
+  # ParaView: pvpython (python3-paraview, which brings paraview) opens runs in the tests
+  python3-paraview
 )
 
 missing=()
