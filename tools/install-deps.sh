@@ -21,6 +21,9 @@ packages=(
   googletest libgtest-dev
   # videos and plots of the studies
   ffmpeg gnuplot-nox
+  # the GPU check's bundle (tools/gpu-bundle.sh): run paths, and the glvnd EGL/GL
+  # libraries it carries to a machine that has only a GPU driver
+  patchelf libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2 ocl-icd-libopencl1
 )
 
 missing=()
