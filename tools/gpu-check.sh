@@ -127,6 +127,8 @@ run_step() {
   echo "== $name: exit $rc after $(( SECONDS - t0 )) s" >> "$log"
   return $rc
 }
+# why NAME: the last line a step printed (the tools end with their error), for the summary
+why() { awk 'NF { line = $0 } END { print line }' "$work/$1.txt" 2>/dev/null | cut -c1-200; }
 # key NAME FILE: the value of NAME=VALUE in FILE (gpu-tool's output)
 key() { awk -F= -v k="$1" '$1 == k { sub(/^[^=]*=/, ""); print; exit }' "$2"; }
 within() { awk -v v="$1" -v t="$2" 'BEGIN { print v != "" && v <= t ? "within" : "beyond" }'; }
@@ -202,7 +204,7 @@ if run_step devices-opencl 60 "$B/bw-sim" --device list; then
   fi
   fig devices opencl_devices "$(grep -Ec '^ *[0-9]+  ' "$work/devices-opencl.txt")" count
 else
-  failures+=("devices: bw-sim --device list failed")
+  failures+=("devices: bw-sim --device list failed: $(why devices-opencl)")
 fi
 renderer="(none)"
 if run_step devices-egl 60 "$B/gpu-tool" egl; then
@@ -213,7 +215,7 @@ if run_step devices-egl 60 "$B/gpu-tool" egl; then
     failures+=("devices: EGL gave the software renderer ($renderer) on a GPU run")
   fi
 else
-  failures+=("devices: no EGL display with OpenGL 4.5 (gpu-tool egl)")
+  failures+=("devices: no EGL display with OpenGL 4.5: $(why devices-egl)")
 fi
 opencl=$(grep -E "^ *[0-9]+  $device " "$work/devices-opencl.txt" 2>/dev/null | head -1 | sed 's/^ *//') || true
 
@@ -241,13 +243,18 @@ if run_step agreement-sim 60 "$B/bw-sim" "$EX/dambreak.toml" -o "$agree_dir" \
       disagreements+=("frames: beyond the tolerance (by id RMS $(key rms "$a") p99 $(key p99 "$a") spacings; moved $(key moved "$a"))")
     fi
   else
-    failures+=("agreement: gpu-tool frames exit $rc")
+    failures+=("agreement: gpu-tool frames exit $rc: $(why agreement-frames)")
   fi
 else
-  failures+=("agreement: bw-sim exit $?")
+  failures+=("agreement: bw-sim exit $?: $(why agreement-sim)")
 fi
-if run_step agreement-render 60 "$B/bw-render" "$REF/dambreak/frames" -o "$work/dambreak-images" --frames 6:6 \
-     --width 640 --height 360 --run "$REF/dambreak/run.h5"; then
+# The reference's frame drawn here. Its solids come from this machine's run of the
+# same scene: the reference's run file names the tank's particles where the bundle
+# was made.
+if [[ ! -e $agree_dir/run.h5 ]]; then
+  failures+=("agreement: no run of the dam break here to take the tank from; the image is not compared")
+elif run_step agreement-render 60 "$B/bw-render" "$REF/dambreak/frames" -o "$work/dambreak-images" --frames 6:6 \
+     --width 640 --height 360 --run "$agree_dir/run.h5"; then
   rc=0
   run_step agreement-images 30 "$B/gpu-tool" images "$REF/dambreak/images/000006.png" \
     "$work/dambreak-images/000006.png" --diff "$out/dambreak-diff.png" --max-mean "$tol_mean" \
@@ -264,10 +271,10 @@ if run_step agreement-render 60 "$B/bw-render" "$REF/dambreak/frames" -o "$work/
     cp "$REF/dambreak/images/000006.png" "$out/dambreak-cpu.png"
     cp "$work/dambreak-images/000006.png" "$out/dambreak-device.png"
   else
-    failures+=("agreement: gpu-tool images exit $rc")
+    failures+=("agreement: gpu-tool images exit $rc: $(why agreement-images)")
   fi
 else
-  failures+=("agreement: bw-render of the reference exit $?")
+  failures+=("agreement: bw-render of the reference exit $?: $(why agreement-render)")
 fi
 
 # ---- bench-sim
@@ -285,7 +292,7 @@ if run_step bench-sim 200 "$B/bench-sim" "${bench_args[@]}"; then
     [[ -n $wps ]] && fig bench-sim "wall_per_simulated_second_${fluid}" "$wps" s
   done < <(tail -n +2 "$work/bench-sim.csv")
 else
-  failures+=("bench-sim: exit $?")
+  failures+=("bench-sim: exit $?: $(why bench-sim)")
 fi
 
 # ---- bench-render
@@ -299,7 +306,7 @@ if run_step bench-render 90 "$B/bench-render" $render_counts --csv "$work/bench-
     fig bench-render "png_ms_${n}" "$png" "ms per PNG"
   done < <(tail -n +2 "$work/bench-render.csv")
 else
-  failures+=("bench-render: exit $?")
+  failures+=("bench-render: exit $?: $(why bench-render)")
 fi
 
 # ---- the paper's scenes: sample the meshes, simulate, measure steps per second
@@ -318,7 +325,7 @@ scene() {
   local rc=0
   run_step "$name-sim" "$limit" "$B/bw-sim" "$EX/$name.toml" -o "$dir" --device "$device" --quiet \
     --set "spacing=$spacing" "${sets[@]}" --end-time "$end" || rc=$?
-  if (( rc != 0 && rc != 124 )) || [[ ! -e $dir/run.h5 ]]; then failures+=("$name: bw-sim exit $rc"); return; fi
+  if (( rc != 0 && rc != 124 )) || [[ ! -e $dir/run.h5 ]]; then failures+=("$name: bw-sim exit $rc: $(why "$name-sim")"); return; fi
   (( rc == 124 )) && say "$name: stopped at the step's time limit of $limit s; measured what it ran"
   run_step "$name-rate" 30 "$B/gpu-tool" rate "$dir/run.h5" --last 5 || { failures+=("$name: gpu-tool rate"); return; }
   local r=$work/$name-rate.txt sps
@@ -347,7 +354,7 @@ if [[ -d $work/wall/frames ]]; then
     fig render frames "$(( last - first + 1 ))" frames
     cp "$work/wall/images/$(printf %06d "$last").png" "$out/wall.png"
   else
-    failures+=("render: bw-render exit $?")
+    failures+=("render: bw-render exit $?: $(why render)")
   fi
 else
   failures+=("render: no frames of the wall to draw")
