@@ -84,7 +84,14 @@ for so in libEGL.so.1 libGLdispatch.so.0 libOpenGL.so.0 libGL.so.1 libGLX.so.0 l
   [[ -e $out/lib/$so ]] || cp -L "$path" "$out/lib/$so"
 done
 for lib in "$out"/lib/*; do copy_libs_of "$lib"; done
-for lib in "$out"/lib/*; do
+# The C++ runtime of the build needs a glibc as new as the build's (2.36 on Debian
+# 12), and every system has one of its own: the system's first, the bundle's only
+# where that one is missing or too old (gpu-check.sh tries).
+mkdir -p "$out/lib/fallback"
+for so in libstdc++.so.6 libgcc_s.so.1; do
+  [[ -e $out/lib/$so ]] && mv "$out/lib/$so" "$out/lib/fallback/"
+done
+for lib in "$out"/lib/*.so* "$out"/lib/fallback/*; do
   strip --strip-unneeded "$lib"
   patchelf --set-rpath '$ORIGIN' "$lib"
 done
@@ -116,7 +123,7 @@ env -u BW_KERNEL_VECTOR_WIDTH "$out/bin/bw-sim" "$out/share/examples/dambreak.to
 
 bytes=$(du -sb "$out" | cut -f1)
 mib=$(( (bytes + 1048575) / 1048576 ))
-echo "gpu-bundle: $out: $(ls "$out/bin" | wc -l) programs, $(ls "$out/lib" | wc -l) libraries, $mib MiB"
+echo "gpu-bundle: $out: $(ls "$out/bin" | wc -l) programs, $(find "$out/lib" -type f | wc -l) libraries, $mib MiB"
 if (( tar )); then
   tar -C "$(dirname "$out")" -czf "$out.tar.gz.tmp" "$(basename "$out")"
   mv "$out.tar.gz.tmp" "$out.tar.gz"

@@ -190,9 +190,14 @@ fi
 [[ -z ${BW_KERNEL_VECTOR_WIDTH:-} ]] || say "BW_KERNEL_VECTOR_WIDTH=$BW_KERNEL_VECTOR_WIDTH: kernels at that width"
 
 # ---- bundle: the tools start (every library they need is there)
+# The system's C++ runtime first; the bundle's where that one is missing or too old.
 if ! "$B/bw-info" --version >> "$log" 2>&1; then
-  ldd "$B/bw-info" >> "$log" 2>&1 || true
-  die "$B/bw-info does not start on this machine (ldd in $log)"
+  export LD_LIBRARY_PATH=$bundle/lib/fallback${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+  if ! "$B/bw-info" --version >> "$log" 2>&1; then
+    ldd "$B/bw-info" >> "$log" 2>&1 || true
+    die "$B/bw-info does not start on this machine (ldd in $log)"
+  fi
+  say "the system's C++ runtime is missing or older than the build's: the bundle's is used ($bundle/lib/fallback)"
 fi
 
 # ---- devices

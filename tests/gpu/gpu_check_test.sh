@@ -19,6 +19,10 @@ for bin in "$bundle"/bin/*; do
   readelf -d "$bin" | grep -q 'R.*PATH.*\[\$ORIGIN/../lib\]' || fail "$bin: run path is not \$ORIGIN/../lib"
   while read -r soname _ path _; do
     case $soname in linux-vdso*|ld-linux*|libc.so*|libm.so*|libpthread*|libdl.so*|librt.so*|libresolv*|libutil*) continue ;; esac
+    # The C++ runtime: the system's first (lib/fallback holds the build's).
+    case $soname in libstdc++.so.6|libgcc_s.so.1)
+      [[ -e $bundle/lib/fallback/$soname ]] || fail "$bundle/lib/fallback/$soname is missing"; continue ;;
+    esac
     path=$(realpath "$path")
     [[ $path == "$bundle/lib/"* ]] || fail "$bin: $soname resolves to $path, outside the bundle"
   done < <(ldd "$bin" | grep '=>')
