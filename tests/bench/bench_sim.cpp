@@ -213,6 +213,8 @@ int main(int argc, char** argv) {
       std::printf("\n  device memory: %.0f bytes per fluid particle\n\n", r.bytes_per_particle);
       std::fflush(stdout);
       results.push_back(r);
+      // Rewritten after every size: a run stopped at a time limit keeps what it measured.
+      if (!csv.empty()) write_csv(csv, device, results);
     }
     if (results.size() > 1) {
       std::printf("growth (cost per particle-step relative to the smallest case, best rounds):\n");
@@ -221,7 +223,6 @@ int main(int argc, char** argv) {
                     r.ns_per_particle_step, r.ns_per_particle_step / results.front().ns_per_particle_step);
     }
     std::printf("load average at the end %s\n", load_average().c_str());
-    if (!csv.empty()) write_csv(csv, device, results);
     return bw::kExitOk;
   });
 }
