@@ -23,6 +23,9 @@ packages=(
   ffmpeg gnuplot-nox
   # ParaView: pvpython (python3-paraview, which brings paraview) opens runs in the tests
   python3-paraview
+  # the GPU check's bundle (tools/gpu-bundle.sh): run paths, and the glvnd EGL/GL
+  # libraries it carries to a machine that has only a GPU driver
+  patchelf libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2 ocl-icd-libopencl1
 )
 
 missing=()

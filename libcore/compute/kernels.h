@@ -14,7 +14,7 @@ SourceLookup embedded_kernels();
 // Options for building the embedded kernels on `device`: OpenCL C 1.2 (what PoCL and
 // every GPU driver compile), fused multiply-adds allowed, and BW_VW, the vector width
 // of the neighbour loops (shaders/sph_vector.h), from the device's preferred float
-// vector width.
+// vector width (or the environment's BW_KERNEL_VECTOR_WIDTH).
 std::string kernel_build_options(const DeviceInfo& device);
 
 // The vector width kernel_build_options chooses: 1, 2, 4, 8 or 16.

@@ -5,15 +5,21 @@
 // time goes, and the wall time per simulated second. Prints figures, asserts nothing.
 //
 //   build/tests/bench/bench-sim [--quick]      (--quick: the 30 k case only)
+//   build/tests/bench/bench-sim --device gpu --sizes 30000,120000,1000000,4000000 --csv sim.csv
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
-#include <cstring>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "cli/tool.h"
+#include "common/atomic_file.h"
 #include "common/terminal.h"
 #include "common/text.h"
 #include "compute/device.h"
@@ -44,11 +50,15 @@ struct Result {
   double best = 0, median = 0, cpu = 0;  // particle-steps per second
   double bytes_per_particle = 0;
   double ns_per_particle_step = 0;       // from the best round
+  double setup_seconds = 0;              // scene, solver and device buffers
+  double wall_per_simulated = 0;         // wall s per simulated s (0: not measured)
+  int n = 0;
 };
 
 // A dam break: a column n x n x 2n spacings against the end of a closed tank
 // 4n x n x 3n, spacing 1 cm, h = 2 spacings (~33 neighbours).
-Result run_case(int n, bool profile, double simulate_seconds) {
+Result run_case(const bw::compute::DeviceInfo& device, int n, bool profile, double simulate_seconds) {
+  bw::Stopwatch setup;
   bw::test::TempDir dir;
   const double s = 0.01;
   bw::test::write_tank(dir.file("tank.h5"), {4 * n, n, 3 * n}, s);
@@ -61,10 +71,12 @@ Result run_case(int n, bool profile, double simulate_seconds) {
   bw::sim::RunOptions options;
   options.output = dir.file("out");
   options.progress = false;
-  bw::sim::Simulation simulation(scene, bw::compute::choose_device("auto"), options);
+  bw::sim::Simulation simulation(scene, device, options);
   bw::sim::Solver& solver = simulation.solver();
 
   Result r;
+  r.n = n;
+  r.setup_seconds = setup.seconds();
   r.fluid = solver.fluid_count();
   r.boundary = solver.boundary_count();
   r.bytes_per_particle = static_cast<double>(solver.device_bytes()) / static_cast<double>(r.fluid);
@@ -90,8 +102,9 @@ Result run_case(int n, bool profile, double simulate_seconds) {
   r.best = rates.back();
   r.median = rates[rates.size() / 2];
   // Process CPU time counts both cores' work: what two dedicated cores would give.
+  // (On a GPU the host's CPU time measures nothing of the device: left out.)
   const int cores = std::max(1, solver.context().device().compute_units);
-  r.cpu = particle_steps_total / cpu_total * cores;
+  if (solver.context().device().type == "cpu") r.cpu = particle_steps_total / cpu_total * cores;
   r.ns_per_particle_step = 1e9 / r.best;
 
   if (profile) {
@@ -114,6 +127,7 @@ Result run_case(int n, bool profile, double simulate_seconds) {
     const std::int64_t steps0 = solver.steps();
     while (solver.time() < t0 + simulate_seconds) solver.step(t0 + simulate_seconds);
     const double wall = clock.seconds();
+    r.wall_per_simulated = wall / simulate_seconds;
     std::printf("  simulated %.2f s of the dam break (%lld steps, mean dt %.3g s) in %.1f s: %.0f s of wall time "
                 "per simulated second\n",
                 simulate_seconds, static_cast<long long>(solver.steps() - steps0),
@@ -122,33 +136,93 @@ Result run_case(int n, bool profile, double simulate_seconds) {
   return r;
 }
 
+// Column side n of the dam break holding about `count` fluid particles (2 n^3).
+int column_for(double count) { return std::max(4, static_cast<int>(std::lround(std::cbrt(count / 2)))); }
+
+void write_csv(const std::string& path, const bw::compute::DeviceInfo& device, const std::vector<Result>& results) {
+  std::string text =
+      "device,fluid,boundary,bytes_per_particle,best,median,cpu,ns_per_particle_step,setup_s,wall_per_simulated_s\n";
+  std::string name = device.label();
+  std::replace(name.begin(), name.end(), ',', ';');
+  for (const Result& r : results) {
+    text += fmt::format("{},{},{},{:.0f},{:.6g},{:.6g},{},{:.4g},{:.3g},{}\n", name, r.fluid, r.boundary,
+                        r.bytes_per_particle, r.best, r.median, r.cpu > 0 ? fmt::format("{:.6g}", r.cpu) : "",
+                        r.ns_per_particle_step, r.setup_seconds,
+                        r.wall_per_simulated > 0 ? fmt::format("{:.4g}", r.wall_per_simulated) : "");
+  }
+  bw::write_file_atomically(path, text.data(), text.size());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
-  const bw::compute::DeviceInfo device = bw::compute::choose_device("auto");
-  std::printf("bench-sim: %s, %d compute units, vector width %d; load average %s\n", device.label().c_str(),
-              device.compute_units, bw::compute::kernel_vector_width(device), load_average().c_str());
-  std::printf("dam break, spacing 1 cm, h = 2 spacings; rounds of 8 steps after 5 warm-up steps\n\n");
-  std::vector<int> sizes = {25, 39, 63};
-  if (quick) sizes = {25};
-  std::vector<Result> results;
-  for (int n : sizes) {
-    std::printf("column %d x %d x %d:\n", n, n, 2 * n);
-    const Result r = run_case(n, n == 39 || quick, n == 25 ? 0.25 : 0.0);
-    std::printf("  %lld fluid + %lld boundary particles\n", static_cast<long long>(r.fluid),
-                static_cast<long long>(r.boundary));
-    std::printf("  particle-steps/s: best %s, median %s; from process CPU time (2 dedicated cores) %s\n",
-                bw::human_count(r.best).c_str(), bw::human_count(r.median).c_str(), bw::human_count(r.cpu).c_str());
-    std::printf("  device memory: %.0f bytes per fluid particle\n\n", r.bytes_per_particle);
-    results.push_back(r);
-  }
-  if (results.size() > 1) {
-    std::printf("growth (cost per particle-step relative to the smallest case, best rounds):\n");
-    for (const Result& r : results)
-      std::printf("  %8lld particles: %.0f ns per particle-step, x %.2f\n", static_cast<long long>(r.fluid),
-                  r.ns_per_particle_step, r.ns_per_particle_step / results.front().ns_per_particle_step);
-  }
-  std::printf("load average at the end %s\n", load_average().c_str());
-  return 0;
+  CLI::App app{"Throughput of the fluid solver: a dam break at several sizes on one OpenCL device; prints "
+               "figures, asserts nothing.",
+               "bench-sim"};
+  bw::cli::setup(app,
+                 "  bench-sim\n"
+                 "  bench-sim --quick\n"
+                 "  bench-sim --device gpu --sizes 30000,120000,1000000,4000000 --csv sim.csv\n");
+  bool quick = false;
+  std::string device_choice = "auto", csv;
+  std::vector<double> counts;
+  double profile_near = 120000, simulate = 0.25;
+  auto* quick_flag = app.add_flag("--quick", quick, "The 30 k case only");
+  app.add_option("--sizes", counts, "Fluid particle counts to run, about (default 30000,120000,500000)")
+      ->delimiter(',')
+      ->check(CLI::Range(1000.0, 1e9))
+      ->excludes(quick_flag);
+  app.add_option("--device", device_choice, "OpenCL device: auto, cpu, gpu or a number (bw-sim --device list)")
+      ->capture_default_str();
+  app.add_option("--csv", csv, "Also write one CSV row per size to this file");
+  app.add_option("--profile", profile_near,
+                 "Time each kernel in the case nearest this many fluid particles (0: none)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--simulate", simulate,
+                 "Simulated seconds of the smallest case, for wall time per simulated second (0: none)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  return bw::cli::run(app, argc, argv, [&]() -> int {
+    const bw::compute::DeviceInfo device = bw::compute::choose_device(device_choice);
+    std::printf("bench-sim: %s, %d compute units, vector width %d; load average %s\n", device.label().c_str(),
+                device.compute_units, bw::compute::kernel_vector_width(device), load_average().c_str());
+    std::printf("dam break, spacing 1 cm, h = 2 spacings; rounds of 8 steps after 5 warm-up steps\n\n");
+    std::vector<int> sizes = {25, 39, 63};
+    if (quick) sizes = {25};
+    if (!counts.empty()) {
+      sizes.clear();
+      for (double c : counts) sizes.push_back(column_for(c));
+    }
+    int profiled = -1;  // the case nearest profile_near
+    if (profile_near > 0) {
+      for (int n : sizes)
+        if (profiled < 0 || std::abs(2.0 * n * n * n - profile_near) < std::abs(2.0 * profiled * profiled * profiled - profile_near))
+          profiled = n;
+    }
+    const int smallest = *std::min_element(sizes.begin(), sizes.end());
+    std::vector<Result> results;
+    for (int n : sizes) {
+      std::printf("column %d x %d x %d:\n", n, n, 2 * n);
+      const Result r = run_case(device, n, n == profiled, n == smallest ? simulate : 0.0);
+      std::printf("  %lld fluid + %lld boundary particles (set up in %.1f s)\n", static_cast<long long>(r.fluid),
+                  static_cast<long long>(r.boundary), r.setup_seconds);
+      std::printf("  particle-steps/s: best %s, median %s", bw::human_count(r.best).c_str(),
+                  bw::human_count(r.median).c_str());
+      if (r.cpu > 0) std::printf("; from process CPU time (2 dedicated cores) %s", bw::human_count(r.cpu).c_str());
+      std::printf("\n  device memory: %.0f bytes per fluid particle\n\n", r.bytes_per_particle);
+      std::fflush(stdout);
+      results.push_back(r);
+      // Rewritten after every size: a run stopped at a time limit keeps what it measured.
+      if (!csv.empty()) write_csv(csv, device, results);
+    }
+    if (results.size() > 1) {
+      std::printf("growth (cost per particle-step relative to the smallest case, best rounds):\n");
+      for (const Result& r : results)
+        std::printf("  %8lld particles: %.0f ns per particle-step, x %.2f\n", static_cast<long long>(r.fluid),
+                    r.ns_per_particle_step, r.ns_per_particle_step / results.front().ns_per_particle_step);
+    }
+    std::printf("load average at the end %s\n", load_average().c_str());
+    return bw::kExitOk;
+  });
 }
