@@ -106,7 +106,7 @@ int main(int argc, char** argv) {
   app.add_option("--smooth", o.smooth, "Mean-curvature smoothing passes (default 1; 0: none)")
       ->check(CLI::Range(0, 100));
   app.add_option("--erode", o.erode,
-                 "Move the surface inwards by this many m after smoothing (default 0; 0.45 x the spacing gives\n"
+                 "Move the surface inwards by this many m after smoothing (default 0; 0.4 x the spacing gives\n"
                  "the particles' volume back with the default radius, at about twice the time)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--up", o.up, "Up axis of the water files: z as breakwater and Blender, y for Houdini")
