@@ -17,6 +17,9 @@ packages=(
   opencl-c-headers opencl-clhpp-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo
   # rendering: EGL and OpenGL through Mesa (llvmpipe when there is no GPU), PNG
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev
+  # export: OpenVDB level sets (on TBB's threads); Blender, the client the export's
+  # test imports into
+  libopenvdb-dev libtbb-dev blender
   # tests and benchmarks
   googletest libgtest-dev
   # videos and plots of the studies

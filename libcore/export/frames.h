@@ -1,0 +1,37 @@
+// The frames of a simulation's folder that an export covers: a range A:B[:S] over
+// OUTDIR/frames/NNNNNN.h5, with the conventions of bw-render's --frames.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace bw::exporter {
+
+// Frames first..last (inclusive) every step. An open end takes the first or last
+// frame present in the folder.
+struct FrameRange {
+  std::optional<int> first;
+  std::optional<int> last;
+  int step = 1;
+};
+
+// "A:B", "A:B:S", "A:", ":B", "A" (that frame alone), "::S". Throws InputError.
+FrameRange parse_frame_range(const std::string& text);
+
+// Frame files of a folder by number: NNNNNN.h5 (digits only). Throws InputError when
+// the folder does not exist or holds none.
+std::map<int, std::string> list_frames(const std::string& dir);
+
+struct FrameRef {
+  int number = 0;
+  std::string path;
+  double time = 0;   // the frame's /time, read when the range is resolved
+};
+
+// The frames of `range` in `dir`, each checked to be a frame file. Throws InputError
+// naming the first missing or foreign file.
+std::vector<FrameRef> resolve_frames(const std::string& dir, const FrameRange& range);
+
+}  // namespace bw::exporter

@@ -1,0 +1,130 @@
+#include "export/job.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "common/terminal.h"
+#include "io/frame_file.h"
+#include "io/run_file.h"
+#include "mesh/import.h"
+
+namespace bw::exporter {
+namespace fs = std::filesystem;
+namespace {
+
+std::string beside_frames(const std::string& frames_dir, const char* name) {
+  std::error_code ec;
+  const fs::path guess = fs::path(frames_dir) / ".." / name;
+  return fs::exists(guess, ec) ? guess.lexically_normal().string() : std::string();
+}
+
+}  // namespace
+
+std::string water_file_name(const std::string& dir, int frame, const std::string& extension) {
+  return fmt::format("{}/water_{:06d}.{}", dir, frame, extension);
+}
+
+ExportPlan plan_export(const ExportJob& job) {
+  ExportPlan plan;
+  if (!job.water && !job.solids) fail_input("nothing to export: both the water and the solids are left out");
+  if (!job.mesh_format.empty() && job.mesh_format != "obj" && job.mesh_format != "ply")
+    fail_input("--mesh '{}': expected obj or ply", job.mesh_format);
+  if (!job.mesh_format.empty() && !job.water) fail_input("--mesh asks for the water, which --no-water leaves out");
+  if (!(job.mesh_adaptivity >= 0 && job.mesh_adaptivity <= 1))
+    fail_input("--adaptivity {}: expected a value in [0, 1]", job.mesh_adaptivity);
+  plan.frames = resolve_frames(job.frames_dir, job.range);
+
+  plan.run_path = job.run_path.empty() ? beside_frames(job.frames_dir, "run.h5") : job.run_path;
+  plan.fragments_path = job.fragments_path.empty() ? beside_frames(job.frames_dir, "fragments.h5") : job.fragments_path;
+  RunRecord run;
+  if (!plan.run_path.empty()) run = read_run(plan.run_path);
+
+  if (job.water) {
+    plan.water_options = job.water_options;
+    if (plan.water_options.spacing > 0) {
+      plan.spacing_source = "--spacing";
+    } else {
+      for (const auto& [name, value] : run.parameters)
+        if (name == "spacing") plan.water_options.spacing = value;
+      if (!(plan.water_options.spacing > 0)) {
+        if (plan.run_path.empty())
+          fail_input("{}: no run file beside the frames to take the particle spacing from; give --run or --spacing",
+                     job.frames_dir);
+        fail_input("{}: /parameters/spacing is missing; give --spacing", plan.run_path);
+      }
+      plan.spacing_source = plan.run_path + ":/parameters/spacing";
+    }
+    plan.water_options.resolve("bw-export");
+  }
+
+  plan.solids = job.solids && !plan.run_path.empty() && !run.solids.empty();
+  if (job.solids && job.run_path.empty() && plan.run_path.empty() && !job.water)
+    fail_input("{}: no run file beside the frames, so no solids to export; give --run", job.frames_dir);
+  if (!job.run_path.empty() && job.solids && run.solids.empty() && !job.water)
+    fail_input("{}: the run has no solids to export", job.run_path);
+
+  if (job.output_dir.empty()) fail_input("no output folder given (-o)");
+  std::error_code ec;
+  if (!fs::is_directory(job.output_dir, ec)) {
+    fs::create_directories(job.output_dir, ec);
+    if (ec) fail_input("{}: cannot create the output folder: {}", job.output_dir, ec.message());
+  }
+  if (::access(job.output_dir.c_str(), W_OK) != 0) fail_input("{}: the output folder is not writable", job.output_dir);
+  return plan;
+}
+
+ExportReport run_export(const ExportJob& job, const std::function<void(const ExportProgress&)>& on_frame) {
+  Stopwatch clock;
+  const ExportPlan plan = plan_export(job);
+  ExportReport report;
+  report.frames = plan.frames.size();
+  report.first = plan.frames.front().number;
+  report.last = plan.frames.back().number;
+  report.water_options = plan.water_options;
+  report.spacing_source = plan.spacing_source;
+
+  // Inputs of the glTF are read before any file is written, so that a bad run or
+  // fragments file leaves nothing behind.
+  SolidSet solids;
+  if (plan.solids) solids = SolidSet::load(plan.run_path, plan.fragments_path);
+
+  std::vector<PoseFrame> poses;
+  double water_seconds = 0;
+  for (std::size_t k = 0; k < plan.frames.size(); ++k) {
+    const FrameRef& ref = plan.frames[k];
+    FrameData frame = read_frame(ref.path);
+    if (plan.solids) poses.push_back({ref.number, frame.time, std::move(frame.bodies)});
+    if (job.water) {
+      Stopwatch water_clock;
+      const WaterSurface surface = WaterSurface::build(frame.x.data(), frame.y.data(), frame.z.data(),
+                                                       frame.fluid_count(), plan.water_options);
+      surface.write_vdb(water_file_name(job.output_dir, ref.number, "vdb"), job.density);
+      water_seconds += water_clock.seconds();
+      report.max_particles = std::max(report.max_particles, surface.stats().particles);
+      report.max_voxels = std::max(report.max_voxels, surface.stats().active_voxels);
+      if (!job.mesh_format.empty()) {
+        const TriMesh mesh = surface.mesh(job.mesh_adaptivity);
+        report.max_triangles = std::max(report.max_triangles, mesh.triangles.size());
+        mesh::export_mesh(mesh, water_file_name(job.output_dir, ref.number, job.mesh_format));
+      }
+    }
+    if (on_frame) on_frame({k + 1, plan.frames.size(), ref.number, clock.seconds()});
+  }
+  if (job.water) report.water_ms_per_frame = 1000 * water_seconds / static_cast<double>(plan.frames.size());
+
+  if (plan.solids) {
+    report.gltf_path = job.output_dir + "/solids.glb";
+    const std::vector<std::uint8_t> glb = build_glb(solids, poses, plan.run_path, &report.gltf);
+    write_file_atomically(report.gltf_path, glb.data(), glb.size());
+  }
+  report.seconds = clock.seconds();
+  return report;
+}
+
+}  // namespace bw::exporter

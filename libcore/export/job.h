@@ -1,0 +1,69 @@
+// Exporting a simulation for artists' programs: the whole job of bw-export, so that
+// the tool only parses its command line.
+//
+//   OUT_DIR/water_NNNNNN.vdb   the water of frame NNNNNN: level set "surface" (and
+//                              fog volume "density" when asked), water.h
+//   OUT_DIR/water_NNNNNN.obj   (or .ply) its surface as triangles, when asked
+//   OUT_DIR/solids.glb         every solid and body, animated over the range, gltf.h
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "export/frames.h"
+#include "export/gltf.h"
+#include "export/water.h"
+
+namespace bw::exporter {
+
+struct ExportJob {
+  std::string frames_dir;        // OUTDIR/frames of a simulation
+  std::string output_dir;        // created when missing
+  FrameRange range;
+  std::string run_path;          // empty: FRAMES_DIR/../run.h5 when it exists
+  std::string fragments_path;    // empty: FRAMES_DIR/../fragments.h5 when it exists
+  bool water = true;             // the .vdb files
+  bool density = false;          // a "density" fog grid beside "surface"
+  std::string mesh_format;       // "", "obj" or "ply": the surface as a mesh too
+  double mesh_adaptivity = 0;
+  bool solids = true;            // solids.glb (when the run has solids)
+  WaterOptions water_options;    // spacing 0: the run's /parameters/spacing
+};
+
+// What run_export will do, checked before anything is written. Throws InputError.
+struct ExportPlan {
+  std::vector<FrameRef> frames;
+  std::string run_path, fragments_path;  // resolved; empty when none
+  WaterOptions water_options;            // resolved
+  bool solids = false;                   // a solids.glb will be written
+  std::string spacing_source;            // where the spacing came from
+};
+ExportPlan plan_export(const ExportJob& job);
+
+struct ExportProgress {
+  std::size_t done = 0, total = 0;
+  int frame = 0;
+  double seconds = 0;
+};
+
+struct ExportReport {
+  std::size_t frames = 0;
+  int first = 0, last = 0;
+  double seconds = 0;
+  double water_ms_per_frame = 0;   // level set, filter and .vdb, per frame
+  std::size_t max_particles = 0, max_voxels = 0, max_triangles = 0;
+  WaterOptions water_options;
+  std::string spacing_source;
+  std::string gltf_path;
+  GltfStats gltf;
+};
+
+// Writes the files (each through a temporary name). Throws InputError for bad input,
+// found before anything is written, and RunError when a write fails.
+ExportReport run_export(const ExportJob& job, const std::function<void(const ExportProgress&)>& on_frame = {});
+
+// "OUT_DIR/water_000042.vdb" and the like.
+std::string water_file_name(const std::string& dir, int frame, const std::string& extension);
+
+}  // namespace bw::exporter

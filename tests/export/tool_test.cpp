@@ -1,0 +1,79 @@
+// bw-export end to end on a small run: the files it writes, frame ranges, and bad
+// inputs refused with one line, exit status 2 and nothing written.
+#include <gtest/gtest.h>
+
+#include "export_fixture.h"
+#include "test_support.h"
+
+namespace bw {
+namespace {
+
+std::string export_cmd(const std::string& args) { return test::tool("bw-export") + " " + args; }
+
+TEST(ExportTool, WritesWaterPerFrameAndOneGltf) {
+  test::TempDir dir;
+  const RunRecord run = test::write_export_run(dir.path());
+  const auto r = test::run(export_cmd(dir.file("frames") + " -o " + dir.file("out") + " --mesh ply -v"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(test::list_folder(dir.file("out")),
+            "solids.glb water_000000.ply water_000000.vdb water_000001.ply water_000001.vdb water_000002.ply "
+            "water_000002.vdb");
+  EXPECT_NE(r.err.find("spacing 0.05 m (" + dir.file("run.h5") + ":/parameters/spacing)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(fmt::format("0 static, {} bodies", run.bodies.size())), std::string::npos) << r.err;
+}
+
+TEST(ExportTool, FrameRangesSplitTheWater) {
+  test::TempDir dir;
+  test::write_export_run(dir.path());
+  auto r = test::run(export_cmd(dir.file("frames") + " -o " + dir.file("out") + " --frames 1:2 --no-solids -q"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_EQ(test::list_folder(dir.file("out")), "water_000001.vdb water_000002.vdb");
+  r = test::run(export_cmd(dir.file("frames") + " -o " + dir.file("out") + " --frames 0 --no-solids -q"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = test::run(export_cmd(dir.file("frames") + " -o " + dir.file("out") + " --no-water --obj -q"));
+  EXPECT_EQ(r.exit_code, 2);  // unknown option
+  r = test::run(export_cmd(dir.file("frames") + " -o " + dir.file("out") + " --no-water -q"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(test::list_folder(dir.file("out")), "solids.glb water_000000.vdb water_000001.vdb water_000002.vdb");
+}
+
+TEST(ExportTool, BadInputsWriteNothing) {
+  test::TempDir dir;
+  test::write_export_run(dir.path());
+  const std::string out = " -o " + dir.file("out");
+  struct Case {
+    std::string args, message;
+  };
+  const Case cases[] = {
+      {dir.file("nowhere") + out, "nowhere: no such folder of frames"},
+      {dir.file("frames") + out + " --frames 1:7", "frame 3 is missing: " + dir.file("frames") + "/000003.h5"},
+      {dir.file("frames") + out + " --frames 2:1", "--frames '2:1': the range is empty (first > last)"},
+      {dir.file("frames") + out + " --no-water --no-solids", "nothing to export"},
+      {dir.file("frames") + out + " --radius 0.01 --voxel 0.01", "--radius 0.01 m is under 1.5 voxels of 0.01 m"},
+      {dir.file("frames") + out + " --fragments " + dir.file("u.h5"), "u.h5: is a 'particles' file, expected a 'fragments' file"},
+      {dir.file("frames") + out + " --run " + dir.file("frames/000000.h5"), "000000.h5: is a 'frame' file, expected a 'run' file"},
+  };
+  for (const Case& c : cases) {
+    const auto r = test::run(export_cmd(c.args));
+    EXPECT_EQ(r.exit_code, 2) << c.args << ": " << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
+    EXPECT_EQ(test::line_count(r.err), 1) << r.err;
+    EXPECT_EQ(test::exists(dir.file("out")) ? test::list_folder(dir.file("out")) : "", "") << c.args;
+  }
+}
+
+TEST(ExportTool, WithoutARunTheSpacingIsNeeded) {
+  test::TempDir dir;
+  test::write_export_run(dir.path());
+  std::filesystem::remove(dir.file("run.h5"));
+  auto r = test::run(export_cmd(dir.file("frames") + " -o " + dir.file("out")));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("give --run or --spacing"), std::string::npos) << r.err;
+  r = test::run(export_cmd(dir.file("frames") + " -o " + dir.file("out") + " --spacing 0.05 -q"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(test::list_folder(dir.file("out")), "water_000000.vdb water_000001.vdb water_000002.vdb");
+}
+
+}  // namespace
+}  // namespace bw

@@ -1,0 +1,133 @@
+// bw-export: a simulation's frames into the formats artists import: the water as
+// OpenVDB level sets (and meshes), the solids as one animated glTF.
+#include <cstdio>
+
+#include "cli/tool.h"
+#include "common/terminal.h"
+#include "common/text.h"
+#include "export/job.h"
+
+namespace {
+
+struct Options {
+  std::string frames_dir;
+  std::string output_dir;
+  std::string frames;
+  std::string run;
+  std::string fragments;
+  std::string mesh;
+  double adaptivity = 0;
+  double spacing = 0, radius = 0, voxel = 0;
+  int smooth = 1;
+  double erode = 0;
+  std::string up = "z";
+  bool density = false;
+  bool no_water = false;
+  bool no_solids = false;
+  bool quiet = false;
+  bool verbose = false;
+
+  bw::exporter::ExportJob job() const {
+    bw::exporter::ExportJob j;
+    j.frames_dir = frames_dir;
+    j.output_dir = output_dir;
+    if (!frames.empty()) j.range = bw::exporter::parse_frame_range(frames);
+    j.run_path = run;
+    j.fragments_path = fragments;
+    j.water = !no_water;
+    j.density = density;
+    j.mesh_format = mesh;
+    j.mesh_adaptivity = adaptivity;
+    j.solids = !no_solids;
+    j.water_options.spacing = spacing;
+    j.water_options.radius = radius;
+    j.water_options.voxel = voxel;
+    j.water_options.smooth = smooth;
+    j.water_options.erode = erode;
+    j.water_options.up = up == "y" ? bw::exporter::Up::kY : bw::exporter::Up::kZ;
+    return j;
+  }
+};
+
+void print_summary(const Options& o, const bw::exporter::ExportReport& r) {
+  std::fprintf(stderr, "bw-export: %zu frame%s (%06d..%06d) -> %s in %s\n", r.frames, r.frames == 1 ? "" : "s",
+               r.first, r.last, o.output_dir.c_str(), bw::human_duration(r.seconds).c_str());
+  if (!o.no_water) {
+    const auto& w = r.water_options;
+    std::fprintf(stderr, "  water        water_NNNNNN.vdb%s%s, %.0f ms per frame, up to %zu particles, %zu voxels\n",
+                 o.mesh.empty() ? "" : " and .", o.mesh.c_str(), r.water_ms_per_frame, r.max_particles,
+                 r.max_voxels);
+    if (o.verbose)
+      std::fprintf(stderr, "  level set    spacing %.4g m (%s), radius %.4g m, voxel %.4g m, %d smoothing pass%s, "
+                   "erode %.4g m\n",
+                   w.spacing, r.spacing_source.c_str(), w.radius, w.voxel, w.smooth, w.smooth == 1 ? "" : "es",
+                   w.erode);
+  }
+  if (!r.gltf_path.empty()) {
+    std::fprintf(stderr, "  solids       %s: %zu static, %zu bodies, %zu triangles, %s\n", r.gltf_path.c_str(),
+                 r.gltf.static_nodes, r.gltf.body_nodes, r.gltf.triangles, bw::human_bytes(r.gltf.bytes).c_str());
+    if (r.gltf.bodies_without_mesh)
+      std::fprintf(stderr, "  note         %zu bodies had no mesh to export (give --fragments from bw-voronoi replay)\n",
+                   r.gltf.bodies_without_mesh);
+  } else if (!o.no_solids) {
+    std::fprintf(stderr, "  solids       none: no run file with solids\n");
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Export a simulation's frames for Blender, Houdini and other programs: the water as\n"
+               "OpenVDB level sets (OUT_DIR/water_NNNNNN.vdb, a grid named \"surface\"), optionally as\n"
+               "meshes too, and every solid and body as one animated glTF (OUT_DIR/solids.glb).",
+               "bw-export"};
+  bw::cli::setup(app,
+                 "  bw-export out/scenes/plate/0.025/frames -o out/scenes/plate/0.025/export\n"
+                 "  bw-export run/frames -o export --frames 0:44 --no-solids        # one part of a split job\n"
+                 "  bw-export run/frames -o export --no-water                       # only solids.glb\n"
+                 "  bw-export run/frames -o export --mesh obj --density --radius 0.03 --smooth 2\n");
+  Options o;
+  app.add_option("frames_dir", o.frames_dir, "Folder of frame files (OUTDIR/frames of a simulation)")->required();
+  app.add_option("-o,--output", o.output_dir, "Folder for the files (created when missing)")->required();
+  app.add_option("--frames", o.frames, "Frames A:B[:S], both ends included (default: all)");
+  app.add_option("--run", o.run, "Run file (default: FRAMES_DIR/../run.h5 when present)");
+  app.add_option("--fragments", o.fragments,
+                 "Fragment meshes of the run, bw-voronoi replay (default: FRAMES_DIR/../fragments.h5 when present)");
+  app.add_option("--mesh", o.mesh, "Also write the water's surface as a mesh per frame")
+      ->check(CLI::IsMember({"obj", "ply"}));
+  app.add_option("--adaptivity", o.adaptivity, "Mesh simplification in [0, 1] (default 0: none)")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_flag("--density", o.density, "Also write a fog volume grid \"density\" (for volume shaders)");
+  app.add_option("--spacing", o.spacing, "Particle spacing in m (default: the run's /parameters/spacing)")
+      ->check(bw::cli::kPositive);
+  app.add_option("--radius", o.radius, "Sphere radius per particle in m (default: the spacing)")
+      ->check(bw::cli::kPositive);
+  app.add_option("--voxel", o.voxel, "Voxel edge in m (default: half the radius)")->check(bw::cli::kPositive);
+  app.add_option("--smooth", o.smooth, "Mean-curvature smoothing passes (default 1; 0: none)")
+      ->check(CLI::Range(0, 100));
+  app.add_option("--erode", o.erode,
+                 "Move the surface inwards by this many m after smoothing (default 0; 0.4 x the spacing gives\n"
+                 "the particles' volume back with the default radius, at about twice the time)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--up", o.up, "Up axis of the water files: z as breakwater and Blender, y for Houdini")
+      ->check(CLI::IsMember({"z", "y"}));
+  app.add_flag("--no-water", o.no_water, "Leave out the water (only solids.glb)");
+  app.add_flag("--no-solids", o.no_solids, "Leave out solids.glb (only the water)");
+  app.add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
+  app.add_flag("-v,--verbose", o.verbose, "Print the level set's settings and where they came from");
+
+  return bw::cli::run(app, argc, argv, [&] {
+    const bw::exporter::ExportJob job = o.job();
+    bw::ProgressLine progress(!o.quiet);
+    const auto report = bw::exporter::run_export(job, [&](const bw::exporter::ExportProgress& p) {
+      const double per_frame = p.seconds / static_cast<double>(p.done);
+      progress.update(fmt::format("bw-export: frame {:06d} ({}/{}), {:.0f} ms per frame, {} left", p.frame, p.done,
+                                  p.total, 1000 * per_frame,
+                                  bw::human_duration(per_frame * static_cast<double>(p.total - p.done))),
+                      p.done == p.total);
+    });
+    progress.clear();
+    if (!o.quiet) print_summary(o, report);
+    return bw::kExitOk;
+  });
+}
