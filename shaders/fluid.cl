@@ -14,6 +14,8 @@
 // Pairs closer than this fraction of h^2 contribute no pressure or friction (the
 // particle itself, or two particles on the same spot, which have no direction).
 #define BW_MIN_R2_FRACTION 1e-12f
+// The density diffusion's (0.1 h)^2, as Molteni & Colagrossi and DualSPHysics write it.
+#define BW_DIFFUSION_ETA2 0.01f
 
 // Non-finite test on the bits, immune to compiler options that assume finite math.
 static inline bool bw_finite(float v) { return (as_uint(v) & 0x7f800000u) != 0x7f800000u; }
@@ -29,17 +31,31 @@ __kernel void boundary_psi(SimParams P, uint nb, __global const uint* bstart, __
   bpsi[i] = P.rho0 / bw_psi_sum(P, i, bstart, bx, by, bz, bsolid);
 }
 
-// rho_i = m sum_j W(x_ij) + gamma1 sum_b Psi_b W(x_ib) with W = W_spiky, then the Tait
-// pressure, the
-// per-particle factors the force kernel reads, with the constants of its sums folded
-// in (pterm = kp p / rho^2, vol = kv / rho, below), and
-// the boundary fraction phi = sum_b Psi_b W_spiky(x_ib) / rho0 (1 on a wall's layer of
-// particles, 0.15 one spacing from a flat wall, 0 far from walls).
-__kernel void fluid_density(SimParams P, __global const uint* start, __global const float* x,
-                            __global const float* y, __global const float* z, __global const uint* bstart,
-                            __global const float* bx, __global const float* by, __global const float* bz,
-                            __global const float* bpsi, __global float* rho, __global float* pres,
-                            __global float* pterm, __global float* vol, __global float* phi) {
+// The density of every particle, then the Tait pressure, the per-particle factors the
+// force kernel reads, with the constants of its sums folded in (pterm = kp p / rho^2,
+// vol = kv / rho, below), and the boundary fraction phi = sum_b Psi_b W_spiky(x_ib) /
+// rho0 (1 on a wall's layer of particles, 0.15 one spacing from a flat wall, 0 far
+// from walls).
+//
+// The density is the sum rho_i = m sum_j W(x_ij) + gamma1 sum_b Psi_b W(x_ib) with
+// W = W_spiky, or, with P.continuity (docs/scene.md, "Density"), the particle's own,
+// integrated over the step just taken (dt) from rho_state, its value at the start of
+// that step (in the current order), by the continuity equation
+//   drho_i/dt = m sum_j v_ij . grad W_ij + gamma1 sum_b Psi_b v_ib . grad W_ib + D_i,
+// the time derivative of the sum above, plus Fourtakas et al. 2019's diffusion
+//   D_i = 2 delta h c0 sum_j (m / rho_j) (rho_j - rho_i - rho_H,ji) x_ji . grad W_ij / (r^2 + eta^2),
+// the Laplacian of the density less its hydrostatic part rho_H,ji = H.x_ji, so that a
+// pool at rest does not diffuse (boundary particles carry no density: no diffusion
+// with them). The rate is taken at the end of the step, from the positions and the
+// velocities the step gave: with symplectic Euler's v += a dt that pairs like x +=
+// v dt does, where a rate from the start of the step would pump the sound waves up.
+__kernel void fluid_density(SimParams P, float dt, __global const uint* start, __global const float* x,
+                            __global const float* y, __global const float* z, __global const float* vx,
+                            __global const float* vy, __global const float* vz, __global const float* rho_state,
+                            __global const uint* bstart, __global const float* bx, __global const float* by,
+                            __global const float* bz, __global const float* bpsi, __global const float* bvx,
+                            __global const float* bvy, __global const float* bvz, __global float* rho,
+                            __global float* pres, __global float* pterm, __global float* vol, __global float* phi) {
   const uint i = get_global_id(0);
   if (i >= start[P.ncells]) return;
   const float xi = x[i], yi = y[i], zi = z[i];
@@ -49,27 +65,72 @@ __kernel void fluid_density(SimParams P, __global const uint* start, __global co
   const int x0 = max(cx - 1, 0), x1 = min(cx + 1, P.nx - 1);
   const float h = P.h, h2 = P.h2;
   vfloat wf = 0.0f, wb = 0.0f;
-  for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
-    for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
-      const int row = bw_cell_index(0, gy, gz, P.nx, P.ny);
-      const int s = (int)start[row + x0], e = (int)start[row + x1 + 1];
-      for (int j = s; j < e; j += BW_VW) {
-        const vfloat dx = xi - VLOAD(x + j), dy = yi - VLOAD(y + j), dz = zi - VLOAD(z + j);
-        const vfloat r2 = dx * dx + dy * dy + dz * dz;
-        const vfloat q = h - sqrt(r2);
-        wf += select((vfloat)0.0f, q * q * q, (r2 < h2) & VIN_ROW(j, e));
-      }
-      const int bs = (int)bstart[row + x0], be = (int)bstart[row + x1 + 1];
-      for (int j = bs; j < be; j += BW_VW) {
-        const vfloat dx = xi - VLOAD(bx + j), dy = yi - VLOAD(by + j), dz = zi - VLOAD(bz + j);
-        const vfloat r2 = dx * dx + dy * dy + dz * dz;
-        const vfloat q = h - sqrt(r2);
-        wb += select((vfloat)0.0f, VLOAD(bpsi + j) * q * q * q, (r2 < h2) & VIN_ROW(j, be));
+  float r;
+  if (!P.continuity) {
+    for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
+      for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
+        const int row = bw_cell_index(0, gy, gz, P.nx, P.ny);
+        const int s = (int)start[row + x0], e = (int)start[row + x1 + 1];
+        for (int j = s; j < e; j += BW_VW) {
+          const vfloat dx = xi - VLOAD(x + j), dy = yi - VLOAD(y + j), dz = zi - VLOAD(z + j);
+          const vfloat r2 = dx * dx + dy * dy + dz * dz;
+          const vfloat q = h - sqrt(r2);
+          wf += select((vfloat)0.0f, q * q * q, (r2 < h2) & VIN_ROW(j, e));
+        }
+        const int bs = (int)bstart[row + x0], be = (int)bstart[row + x1 + 1];
+        for (int j = bs; j < be; j += BW_VW) {
+          const vfloat dx = xi - VLOAD(bx + j), dy = yi - VLOAD(by + j), dz = zi - VLOAD(bz + j);
+          const vfloat r2 = dx * dx + dy * dy + dz * dz;
+          const vfloat q = h - sqrt(r2);
+          wb += select((vfloat)0.0f, VLOAD(bpsi + j) * q * q * q, (r2 < h2) & VIN_ROW(j, be));
+        }
       }
     }
+    r = P.spiky * P.kernel_mass * VSUM(wf) + P.gamma1 * (P.spiky * VSUM(wb));
+  } else {
+    const float vxi = vx[i], vyi = vy[i], vzi = vz[i];
+    const float rhoi = rho_state[i];
+    const float min_r2 = h2 * BW_MIN_R2_FRACTION;  // keeps 1/r finite for the particle itself
+    const float eta2 = BW_DIFFUSION_ETA2 * h2;
+    vfloat sd = 0.0f, sb = 0.0f;  // drho/dt over -3 spiky: fluid (over m), boundary (over gamma1)
+    for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
+      for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
+        const int row = bw_cell_index(0, gy, gz, P.nx, P.ny);
+        const int s = (int)start[row + x0], e = (int)start[row + x1 + 1];
+        for (int j = s; j < e; j += BW_VW) {
+          const vfloat dx = xi - VLOAD(x + j), dy = yi - VLOAD(y + j), dz = zi - VLOAD(z + j);
+          const vfloat r2 = dx * dx + dy * dy + dz * dz;
+          const vint ok = (r2 < h2) & VIN_ROW(j, e);
+          const vfloat ir = bw_rsqrt(fmax(r2, min_r2));
+          const vfloat q = h - r2 * ir;
+          const vfloat rhoj = VLOAD(rho_state + j);
+          // v_ij . x_ij, and -rho_H,ji = H.x_ij; x_ji . grad W_ij / r^2 = 3 spiky (h - r)^2 / r.
+          // Lanes past the row or the support may hold anything: select, never multiply by 0.
+          const vfloat vij = (vxi - VLOAD(vx + j)) * dx + (vyi - VLOAD(vy + j)) * dy + (vzi - VLOAD(vz + j)) * dz;
+          const vfloat hyd = P.hx * dx + P.hy * dy + P.hz * dz;
+          // The diffusion's weight x_ji . grad W / (r^2 + eta^2): spiky's gradient does not
+          // vanish at r = 0, and without eta two close particles would diffuse without bound.
+          const vfloat r = r2 * ir;
+          sd += select((vfloat)0.0f,
+                       q * q * (vij * ir + P.diffusion * r / (r2 + eta2) * (rhoi - rhoj - hyd) / rhoj), ok);
+        }
+        const int bs = (int)bstart[row + x0], be = (int)bstart[row + x1 + 1];
+        for (int j = bs; j < be; j += BW_VW) {
+          const vfloat dx = xi - VLOAD(bx + j), dy = yi - VLOAD(by + j), dz = zi - VLOAD(bz + j);
+          const vfloat r2 = dx * dx + dy * dy + dz * dz;
+          const vint ok = (r2 < h2) & VIN_ROW(j, be);
+          const vfloat ir = bw_rsqrt(fmax(r2, min_r2));
+          const vfloat q = h - r2 * ir;
+          const vfloat psi = VLOAD(bpsi + j);
+          const vfloat vib = (vxi - VLOAD(bvx + j)) * dx + (vyi - VLOAD(bvy + j)) * dy + (vzi - VLOAD(bvz + j)) * dz;
+          sb += select((vfloat)0.0f, psi * q * q * ir * vib, ok);
+          wb += select((vfloat)0.0f, psi * q * q * q, ok);
+        }
+      }
+    }
+    r = rhoi - 3.0f * P.spiky * (P.kernel_mass * VSUM(sd) + P.gamma1 * VSUM(sb)) * dt;
   }
   const float boundary = P.spiky * VSUM(wb);
-  const float r = P.spiky * P.kernel_mass * VSUM(wf) + P.gamma1 * boundary;
   const float p = bw_tait(r, P.rho0, P.stiffness, P.gamma, P.gamma_int);
   rho[i] = r;
   pres[i] = p;
@@ -280,15 +341,17 @@ __kernel void fluid_frame_reduce(SimParams P, uint n, uint chunk, uint nblocks, 
 
 // Writes `count` new particles at slots first.. : emitter lattice points
 // px/py/pz[point0 + k] moved by (ox, oy, oz), velocity (ux, uy, uz), ids first_id + k,
-// held by emitter `emitter` (hold = emitter + 1).
+// held by emitter `emitter` (hold = emitter + 1), density rho0 (they leave the
+// emitter on the lattice, uncompressed).
 __kernel void fluid_emit(uint count, uint first, uint first_id, uint point0, uint emitter, __global const float* px,
                          __global const float* py, __global const float* pz, float ox, float oy, float oz, float ux,
                          float uy, float uz, __global float* x, __global float* y, __global float* z,
                          __global float* vx, __global float* vy, __global float* vz, __global uint* id,
-                         __global uint* hold) {
+                         __global uint* hold, float rho0, __global float* rho) {
   const uint k = get_global_id(0);
   if (k >= count) return;
   const uint i = first + k;
+  rho[i] = rho0;
   x[i] = px[point0 + k] + ox;
   y[i] = py[point0 + k] + oy;
   z[i] = pz[point0 + k] + oz;

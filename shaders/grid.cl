@@ -50,8 +50,9 @@ __kernel void cell_starts(uint n, uint ncells, __global const uint* keys, __glob
 __kernel void fluid_reorder(uint n, __global const uint* order, __global const float* x, __global const float* y,
                             __global const float* z, __global const float* vx, __global const float* vy,
                             __global const float* vz, __global const uint* id, __global const uint* hold,
-                            __global float* x2, __global float* y2, __global float* z2, __global float* vx2,
-                            __global float* vy2, __global float* vz2, __global uint* id2, __global uint* hold2) {
+                            __global const float* rho, __global float* x2, __global float* y2, __global float* z2,
+                            __global float* vx2, __global float* vy2, __global float* vz2, __global uint* id2,
+                            __global uint* hold2, __global float* rho2) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const uint j = order[i];
@@ -63,6 +64,7 @@ __kernel void fluid_reorder(uint n, __global const uint* order, __global const f
   vz2[i] = vz[j];
   id2[i] = id[j];
   hold2[i] = hold[j];
+  rho2[i] = rho[j];
 }
 
 // Gathers a float and a uint boundary array into sorted order (called per array set).

@@ -48,6 +48,11 @@ typedef struct {
   float mu_b;       // boundary friction (Pa s)
   float gamma1;     // weight of the boundary term in the density
   float gamma2;     // weight of the boundary pressure force
+  // density (docs/scene.md, "Density"): 1 integrates the continuity equation with
+  // Fourtakas et al. 2019's density diffusion, 0 sums the kernel over neighbours
+  int continuity;
+  float diffusion;  // 2 delta h c0: the diffusion term's coefficient (m^2/s), 0 without
+  float hx, hy, hz; // rho0^2 g / (gamma k): rho_H(x_j) - rho_H(x_i) = H.(x_j - x_i), the hydrostatic part
   float contact;    // contact distance to a solid's surface (m), fluid_integrate
   float patch;      // radius of the surface patch a boundary particle stands for (m)
   float gx, gy, gz; // gravity (m/s^2)

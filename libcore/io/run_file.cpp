@@ -140,6 +140,16 @@ void write_run(const RunRecord& run, const std::string& path) {
   fracture.write("child_body", child_body);
   fracture.write("child_seed", child_seed);
   fracture.write("child_component", child_component);
+  if (!run.loads.empty()) {
+    h5::Group loads = root.create_group("loads");
+    const std::size_t nsolids = run.loads.front().size();
+    std::vector<Vec3d> impulse;
+    for (const auto& row : run.loads) {
+      if (row.size() != nsolids) fail_run("{}: load rows of {} and {} solids", path, nsolids, row.size());
+      impulse.insert(impulse.end(), row.begin(), row.end());
+    }
+    loads.write<double>("impulse", flatten(impulse), {run.loads.size(), nsolids, 3});
+  }
   file.commit();
 }
 
@@ -284,6 +294,22 @@ RunRecord read_run(const std::string& path) {
       ev.child_component.push_back(child_component[c]);
     }
     run.fractures.push_back(std::move(ev));
+  }
+  if (root.is_group("loads")) {
+    const h5::Group loads = root.open_group("loads");
+    h5::Shape shape;
+    const auto impulse = loads.read<double>("impulse", &shape);
+    if (shape.size() != 3 || shape[0] != run.frames.size() || shape[1] != run.solids.size() || shape[2] != 3)
+      fail_input("{}: expected frames x solids x 3 = {} x {} x 3", loads.where("impulse"), run.frames.size(),
+                 run.solids.size());
+    for (std::size_t f = 0; f < shape[0]; ++f) {
+      std::vector<Vec3d> row;
+      for (std::size_t k = 0; k < shape[1]; ++k) {
+        const std::size_t at = 3 * (f * shape[1] + k);
+        row.emplace_back(impulse[at], impulse[at + 1], impulse[at + 2]);
+      }
+      run.loads.push_back(std::move(row));
+    }
   }
   return run;
 }

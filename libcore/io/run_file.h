@@ -75,6 +75,10 @@ struct RunRecord {
   // indicators (worst density error, energy drift, particles lost), so that a run's
   // cost and quality read from one place (docs/formats.md lists the names).
   std::vector<std::pair<std::string, double>> summary;
+  // With [output] loads: per frame, per scene solid (the order of `solids`), the
+  // impulse of the fluid and of contacts on it since t = 0 (N s; docs/formats.md,
+  // /loads). Empty otherwise.
+  std::vector<std::vector<Vec3d>> loads;
 };
 
 // Writes the whole record through a temporary file (called after every frame).

@@ -111,6 +111,13 @@ class Reader {
     if (auto v = n->value_exact<double>()) fail(key, fmt::format("{} is not a whole number", *v));
     fail(key, fmt::format("expected an integer, found {}", type_name(*n)));
   }
+  bool boolean(std::string_view key, bool fallback) {
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    const auto v = n->value_exact<bool>();
+    if (!v) fail(key, fmt::format("expected true or false, found {}", type_name(*n)));
+    return *v;
+  }
   std::string string(std::string_view key, const std::string& fallback) {
     const toml::node* n = node(key);
     if (!n) return fallback;
@@ -347,6 +354,19 @@ void read_fluid(Reader& top, Scene& s) {
     f.gamma2 = r.number("gamma2", f.gamma2);
     non_negative(r, "gamma2", f.gamma2);
   }
+  if (r.has("density")) {
+    const std::string scheme = r.string("density", "summation");
+    if (scheme == "continuity") f.density = DensityScheme::continuity;
+    else if (scheme == "summation") f.density = DensityScheme::summation;
+    else r.fail("density", fmt::format("\"{}\" is not a density scheme: \"continuity\" or \"summation\"", scheme));
+  }
+  if (r.has("diffusion")) {
+    f.diffusion = r.number("diffusion", f.diffusion);
+    if (!(f.diffusion >= 0 && f.diffusion <= 1))
+      r.fail("diffusion", fmt::format("{} must be between 0 (none) and 1 (0.1 is the usual delta)", f.diffusion));
+    if (f.density == DensityScheme::summation && f.diffusion > 0)
+      r.fail("diffusion", "density diffusion needs fluid.density = \"continuity\"; set it to 0 with \"summation\"");
+  }
   if (r.has("max_particles")) {
     f.max_particles = r.integer("max_particles", 0);
     if (f.max_particles < 1) r.fail("max_particles", fmt::format("{} must be at least 1", f.max_particles));
@@ -383,19 +403,12 @@ void read_solid(Reader& r, Scene& s) {
   solid.rotation_degrees = r.vec3("rotation", solid.rotation_degrees);
   solid.scale = r.number("scale", solid.scale);
   positive(r, "scale", solid.scale);
-  auto boolean = [&](std::string_view key, bool fallback) {
-    const toml::node* n = r.node(key);
-    if (!n) return fallback;
-    const auto v = n->value_exact<bool>();
-    if (!v) r.fail(key, fmt::format("expected true or false, found {}", type_name(*n)));
-    return *v;
-  };
-  solid.dynamic = boolean("dynamic", false);
-  solid.breakable = boolean("breakable", false);
+  solid.dynamic = r.boolean("dynamic", false);
+  solid.breakable = r.boolean("breakable", false);
   if (solid.breakable) {
     solid.frc = r.number("frc", solid.frc);
     in_unit_interval(r, "frc", solid.frc);
-    solid.anchored = boolean("anchored", solid.anchored);
+    solid.anchored = r.boolean("anchored", solid.anchored);
     if (solid.anchored && solid.dynamic)
       r.fail("anchored", "an anchored breakable solid stays fixed until it breaks; it cannot also be dynamic (set "
                          "anchored = false for a breakable solid that moves)");
@@ -447,6 +460,7 @@ void read_output(Reader& top, Scene& s) {
   if (const toml::table* t = top.table("output")) {
     Reader r(*t, "output", s.path);
     fields = r.strings("fields", fields);
+    s.loads = r.boolean("loads", false);
     r.finish();
   }
   s.fields = FrameFields{};

@@ -28,6 +28,9 @@ struct TimeSettings {
   double viscous_factor = 0.125;  // dt <= viscous_factor h^2 rho0 / max(mu, mu_b)
 };
 
+// How the fluid's density is found (docs/scene.md, "Density").
+enum class DensityScheme { continuity, summation };
+
 struct FluidSettings {
   double rho0 = 998;           // kg/m^3
   double k = 0;                // Tait stiffness (Pa); 0 = from c0
@@ -39,6 +42,8 @@ struct FluidSettings {
                                // so that fluid one spacing from a flat wall has rho0
   double gamma2 = -1;          // weight of the boundary pressure force; < 0: gamma1 / 2
   std::int64_t max_particles = 0;  // MFP; 0 = what the blocks and emitters need
+  DensityScheme density = DensityScheme::summation;
+  double diffusion = 0.1;      // delta of the density diffusion (continuity only); 0: none
 };
 
 // A box filled with fluid particles on a cubic lattice of the scene's spacing:
@@ -113,6 +118,7 @@ struct Scene {
   Aabb domain;                     // required
   FrameFields fields;              // what frames hold besides positions
   std::vector<std::string> field_names;
+  bool loads = false;              // [output] loads: the run file records each solid's load
 };
 
 // Reads and checks a scene file. Throws InputError "<path>: <key>: <problem>".

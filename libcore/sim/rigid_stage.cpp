@@ -237,15 +237,23 @@ void Solver::Impl::upload_layout() {
   // Blocks of the per-body sums: the moving bodies' particles (and the static ones
   // when their reactions are measured), never two owners' in one block.
   r.block_table.clear();
-  auto add_blocks = [&](std::uint32_t body, std::uint32_t first, std::uint32_t count) {
+  // A static block's pad holds its solid's index (the loads of each solid).
+  auto add_blocks = [&](std::uint32_t body, std::uint32_t first, std::uint32_t count, std::uint32_t solid) {
     for (std::uint32_t k = 0; k < count; k += kBodyBlock)
-      r.block_table.push_back(BodyBlock{body, first + k, std::min(kBodyBlock, count - k), 0});
+      r.block_table.push_back(BodyBlock{body, first + k, std::min(kBodyBlock, count - k), solid});
   };
-  if (r.measure_static) add_blocks(BW_NO_BODY, 0, r.ns);
+  if (r.measure_static)  // one solid's particles at a time: they are in scene order
+    for (std::uint32_t a = 0; a < r.ns;) {
+      std::uint32_t b = a;
+      while (b < r.ns && r.sowner[b] == r.sowner[a]) ++b;
+      add_blocks(BW_NO_BODY, a, b - a, r.sowner[a]);
+      a = b;
+    }
+  // Fixed bodies only for their loads: they do not move.
   for (std::size_t k = 0; k < r.bodies.size(); ++k) {
     const BodyEntry& e = r.bodies[k];
-    if (e.info.active && !e.info.fixed)
-      add_blocks(static_cast<std::uint32_t>(k), e.first, static_cast<std::uint32_t>(e.reference.size()));
+    if (e.info.active && (!e.info.fixed || r.measure_static))
+      add_blocks(static_cast<std::uint32_t>(k), e.first, static_cast<std::uint32_t>(e.reference.size()), 0);
   }
   r.blocks = ctx.buffer(std::max<std::size_t>(1, r.block_table.size()) * sizeof(BodyBlock), "body blocks");
   ctx.write_vector(r.blocks, r.block_table);
@@ -394,13 +402,19 @@ void Solver::Impl::sum_blocks(double dt) {
   for (std::size_t b = 0; b < nblocks; ++b) {
     const BodyReduce& s = sums[b];
     const Vec3d force(s.fx, s.fy, s.fz), torque(s.tx, s.ty, s.tz);
-    pairs += s.touching;
     const std::uint32_t body = r.block_table[b].body;
+    const bool measured_only = body != BW_NO_BODY && r.bodies[body].info.fixed;
+    if (!measured_only) pairs += s.touching;
     if (body == BW_NO_BODY) {
       static_force += force;
+      if (dt > 0) r.solid_impulse[r.block_table[b].pad] += dt * force;
       continue;
     }
     BodyEntry& e = r.bodies[body];
+    if (measured_only) {  // a fixed body's load (its contact weight is not a moving owner's)
+      if (dt > 0) r.solid_impulse[static_cast<std::size_t>(e.info.solid)] += dt * force;
+      continue;
+    }
     e.contact_weight += s.touching;
     if (dt >= 0) {
       e.force += force;
@@ -408,7 +422,12 @@ void Solver::Impl::sum_blocks(double dt) {
     }
   }
   r.touching_now = pairs > 0;
-  if (dt > 0) r.static_impulse += dt * static_force;
+  if (dt > 0) {
+    r.static_impulse += dt * static_force;
+    if (r.measure_static)  // the moving bodies' loads: fluid and contacts, without gravity
+      for (const BodyEntry& e : r.bodies)
+        if (e.info.active && !e.info.fixed) r.solid_impulse[static_cast<std::size_t>(e.info.solid)] += dt * e.force;
+  }
 }
 
 void Solver::Impl::step_bodies(double dt) {
@@ -512,10 +531,16 @@ void Solver::measure_static_reactions(bool on) {
   if (!s.rigid || s.rigid->measure_static == on) return;
   s.rigid->measure_static = on;
   s.rigid->static_impulse = Vec3d::Zero();
+  s.rigid->solid_impulse.assign(s.rigid->body_owner0, Vec3d::Zero());
   s.rigid->layout_dirty = true;
   s.boundary_dirty = true;
 }
 
 Vec3d Solver::static_impulse() const { return impl_->rigid ? impl_->rigid->static_impulse : Vec3d::Zero(); }
+
+std::vector<Vec3d> Solver::solid_impulses() const {
+  if (!impl_->rigid || !impl_->rigid->measure_static) return {};
+  return impl_->rigid->solid_impulse;
+}
 
 }  // namespace bw::sim

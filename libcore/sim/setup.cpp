@@ -400,6 +400,33 @@ fracture::Piece breakable_piece(const BodySetup& body) {
   return piece;
 }
 
+// The density the continuity equation starts from: each block at rest under gravity,
+// rho0 (1 + rho0 |g| d / k)^(1 / gamma) at depth d below its top (half a spacing above
+// its highest particles), the Tait law's inverse at the hydrostatic pressure, so a
+// pool starts in balance instead of ringing at the speed of sound.
+std::vector<float> hydrostatic_density(const scene::Scene& s, const Setup& out, const Parameters& p) {
+  std::vector<float> rho(out.fluid.size(), static_cast<float>(p.rho0));
+  const double g = p.gravity.norm();
+  if (!(g > 0)) return rho;
+  const Vec3d up = -p.gravity / g;
+  std::size_t first = 0;
+  for (std::size_t b = 0; b < s.blocks.size() && b < out.block_particles.size(); ++b) {
+    const std::size_t end = first + out.block_particles[b];
+    auto height = [&](std::size_t i) {
+      return up.dot(Vec3d(out.fluid.x[i], out.fluid.y[i], out.fluid.z[i]));
+    };
+    double top = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = first; i < end; ++i) top = std::max(top, height(i));
+    top += 0.5 * p.spacing;
+    for (std::size_t i = first; i < end; ++i) {
+      const double depth = std::max(0.0, top - height(i));
+      rho[i] = static_cast<float>(p.rho0 * std::pow(1 + p.rho0 * g * depth / p.k, 1 / p.gamma));
+    }
+    first = end;
+  }
+  return rho;
+}
+
 Setup prepare(const scene::Scene& s, double end_time) {
   Setup out;
   Parameters& p = out.params;
@@ -622,6 +649,9 @@ Setup prepare(const scene::Scene& s, double end_time) {
     p.k = p.rho0 * p.c0 * p.c0 / p.gamma;
   }
   p.speed_limit = std::max(kGuardSpeedFactor * p.scene_speed, p.c0);
+  p.continuity = f.density == scene::DensityScheme::continuity;
+  p.diffusion = f.diffusion;
+  if (p.continuity) out.fluid_rho = hydrostatic_density(s, out, p);
   p.contact_dt = std::numeric_limits<double>::infinity();
   if (!out.bodies.empty()) {
     // A particle that hits another solid head-on at the scene's largest speed goes

@@ -66,6 +66,11 @@ struct Parameters {
   double contact_zeta_max = 0;  // the largest damping ratio stable at that step
   Aabb domain;                  // particles leaving it are removed
   std::array<std::int64_t, 3> grid{0, 0, 0};  // cells of edge h covering the domain
+  // The density (docs/scene.md, "Density"): integrated by the continuity equation with
+  // Fourtakas et al. 2019's diffusion of coefficient delta = diffusion (0: none), or
+  // the kernel sum over neighbours (continuity false).
+  bool continuity = false;
+  double diffusion = 0.1;
 };
 
 // Particles in structure-of-arrays form (float, what the device computes in).
@@ -130,6 +135,7 @@ struct BodySetup {
 struct Setup {
   Parameters params;
   ParticleArrays fluid;         // the blocks' particles at t = 0
+  std::vector<float> fluid_rho; // their densities at t = 0 (hydrostatic), with the continuity equation
   std::vector<EmitterLattice> emitters;
   BoundarySet boundary;         // static solids
   std::vector<BodySetup> bodies;        // dynamic and breakable solids, in scene order

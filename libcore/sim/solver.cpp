@@ -50,6 +50,12 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   P.mu_b = static_cast<float>(p.mu_b);
   P.gamma1 = static_cast<float>(p.gamma1);
   P.gamma2 = static_cast<float>(p.gamma2);
+  P.continuity = p.continuity ? 1 : 0;
+  P.diffusion = static_cast<float>(p.continuity ? 2.0 * p.diffusion * p.h * p.c0 : 0.0);
+  const Vec3d hydrostatic = p.rho0 * p.rho0 / (p.gamma * p.k) * p.gravity;
+  P.hx = static_cast<float>(hydrostatic.x());
+  P.hy = static_cast<float>(hydrostatic.y());
+  P.hz = static_cast<float>(hydrostatic.z());
   P.contact = static_cast<float>(kContactDistance * p.spacing);
   P.patch = static_cast<float>(kPatchRadius * p.spacing);
   P.gx = static_cast<float>(p.gravity.x());
@@ -69,7 +75,7 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   P.ncells = static_cast<int>(s.ncells);
 
   // Refuse what cannot fit before allocating anything.
-  const std::uint64_t per_particle = 28 * sizeof(float);
+  const std::uint64_t per_particle = 29 * sizeof(float);
   const std::uint64_t nb_all = setup.boundary.particles.size();
   const std::uint64_t estimate = (s.capacity + kPad) * per_particle + 2 * (cells + 1) * sizeof(std::uint32_t) +
                                  (nb_all + kPad) * 15 * sizeof(float);
@@ -122,6 +128,7 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   s.ax = s.floats(cap, "fluid ax");
   s.ay = s.floats(cap, "fluid ay");
   s.az = s.floats(cap, "fluid az");
+  s.rho_state = s.floats(cap, "fluid rho at the step's start");
   s.start = context.buffer((std::size_t(s.ncells) + 1) * sizeof(std::uint32_t), "fluid cell starts");
   s.bstart = context.buffer((std::size_t(s.ncells) + 1) * sizeof(std::uint32_t), "boundary cell starts");
   std::uint32_t chunk = 0;
@@ -138,6 +145,9 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   context.write_vector(s.vx[0], fluid.vx);
   context.write_vector(s.vy[0], fluid.vy);
   context.write_vector(s.vz[0], fluid.vz);
+  context.write_vector(s.rho,
+                       setup.fluid_rho.size() == fluid.size() ? setup.fluid_rho
+                                                              : std::vector<float>(fluid.size(), P.rho0));
   std::vector<std::uint32_t> ids(fluid.size());
   for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<std::uint32_t>(i);
   context.write_vector(s.id[0], ids);
@@ -269,9 +279,7 @@ StepInfo Solver::step(double t_target) {
   if (!(t_target > s.t)) fail_run("step to t = {} requested at t = {}", t_target, s.t);
   s.ensure_grid();
   const int f = s.front;
-  s.forces.args(s.P, s.start, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.rho, s.pterm, s.vol, s.bstart, s.bx,
-                s.by, s.bz, s.bpsi, s.bvx, s.bvy, s.bvz, s.ax, s.ay, s.az);
-  s.ctx.launch(s.forces, s.n);
+  s.launch_forces();
 
   std::uint32_t chunk = 0;
   const std::uint32_t blocks = s.reduce_blocks(s.n, chunk);
@@ -338,6 +346,7 @@ StepInfo Solver::step(double t_target) {
                    s.emitter_table);
   s.ctx.launch(s.integrate, s.n);
   s.emitted_energy += held_power * dt;
+  s.pending_dt += dt;
   if (s.rigid) s.step_bodies(dt);
   s.grid_valid = false;
   s.t = lands ? t_target : s.t + dt;
@@ -367,7 +376,7 @@ std::uint64_t Solver::device_bytes() const {
     total += s.x[k].bytes() + s.y[k].bytes() + s.z[k].bytes() + s.vx[k].bytes() + s.vy[k].bytes() + s.vz[k].bytes() +
              s.id[k].bytes() + s.hold[k].bytes();
   for (const Buffer* b : {&s.keys, &s.values, &s.keys_tmp, &s.values_tmp, &s.rho, &s.pres, &s.pterm, &s.vol, &s.phi, &s.ax,
-                          &s.ay, &s.az, &s.start, &s.bx, &s.by, &s.bz, &s.bpsi, &s.bvx, &s.bvy, &s.bvz, &s.bnx, &s.bny, &s.bnz, &s.bsolid,
+                          &s.ay, &s.az, &s.rho_state, &s.start, &s.bx, &s.by, &s.bz, &s.bpsi, &s.bvx, &s.bvy, &s.bvz, &s.bnx, &s.bny, &s.bnz, &s.bsolid,
                           &s.bstart, &s.step_out, &s.frame_out, &s.ex, &s.ey, &s.ez, &s.emitter_table})
     total += b->bytes();
   return total + s.sort->scratch_bytes() + s.rigid_bytes() + s.bflat.bytes() + s.fracture_bytes();
@@ -449,6 +458,18 @@ FrameData Solver::frame(const FrameFields& fields, int frame_index) {
   return d;
 }
 
+std::vector<float> Solver::summed_density() {
+  Impl& s = *impl_;
+  s.ensure_grid();
+  s.settle_count();
+  SimParams summation = s.P;
+  summation.continuity = 0;
+  s.launch_density(summation);
+  std::vector<float> out = s.ctx.read_vector<float>(s.rho, s.n);
+  s.launch_density(s.P);  // the solver's own densities again
+  return out;
+}
+
 Solver::Neighbours Solver::neighbour_lists(std::uint32_t max_per_particle) {
   Impl& s = *impl_;
   s.ensure_grid();
@@ -479,9 +500,7 @@ Solver::Snapshot Solver::snapshot() {
   Impl& s = *impl_;
   s.ensure_grid();
   const int f = s.front;
-  s.forces.args(s.P, s.start, s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.rho, s.pterm, s.vol, s.bstart, s.bx,
-                s.by, s.bz, s.bpsi, s.bvx, s.bvy, s.bvz, s.ax, s.ay, s.az);
-  s.ctx.launch(s.forces, s.n);
+  s.launch_forces();
   s.settle_count();
   const std::size_t n = s.n, nb = s.nb;
   Snapshot out;

@@ -4,7 +4,8 @@
 // Device layout (shaders/fluid.cl, shaders/grid.cl):
 //   fluid     x, y, z, vx, vy, vz (float) and id (uint), one array each, sorted by
 //             grid cell every step; two copies of each, swapped by the reorder;
-//             rho, p, p/rho^2, 1/rho and ax, ay, az in the current order;
+//             rho (with the continuity equation a state, carried by the reorder
+//             into rho_state), p, p/rho^2, 1/rho and ax, ay, az in the current order;
 //   boundary  bx, by, bz, Psi_b, bvx, bvy, bvz (float) and the solid index (uint),
 //             sorted by cell once (static solids);
 //   grid      start[c] = first particle of cell c, for fluid and boundary.
@@ -181,6 +182,16 @@ class Solver {
   // steps since this was turned on (N s). Runs the rigid stage even without bodies.
   void measure_static_reactions(bool on);
   Vec3d static_impulse() const;
+  // While reactions are measured: per scene solid, the impulse of the fluid and of
+  // contacts on it since they were turned on (N s): on a static solid's particles, or
+  // on the bodies it became (itself, or its fragments, fixed ones included), without
+  // gravity. Empty when not measured.
+  std::vector<Vec3d> solid_impulses() const;
+
+  // The density of every fluid particle as the kernel sum gives it now (the sum the
+  // continuity equation starts from), in the order of frame(); for the check that
+  // no fluid starts on top of a solid or of other fluid, whatever the density scheme.
+  std::vector<float> summed_density();
 
   // For tests: the sorted fluid positions and, per particle, the sorted indices of
   // its neighbours within h (including itself).

@@ -105,6 +105,7 @@ struct RigidStage {
   bool measure_static = false;
   std::map<double, double> damping_of;   // damping ratio by restitution (rigid::damping_ratio_for_step)
   Vec3d static_impulse = Vec3d::Zero();  // N s
+  std::vector<Vec3d> solid_impulse;      // N s, per scene solid: static, or its bodies and fragments
 };
 
 struct Solver::Impl {
@@ -123,7 +124,12 @@ struct Solver::Impl {
   std::array<Buffer, 2> x, y, z, vx, vy, vz, id, hold;
   int front = 0;
   Buffer keys, values, keys_tmp, values_tmp;
-  Buffer rho, pres, pterm, vol, phi, ax, ay, az, start;
+  // rho: the density now, in the current order (with P.continuity the state the
+  // continuity equation integrates; the reorder carries it into rho_state, its value
+  // at the start of the step, from which fluid_density integrates the step).
+  Buffer rho, rho_state, pres, pterm, vol, phi, ax, ay, az, start;
+  double pending_dt = 0;   // the step taken since the density was last integrated
+  double density_dt = 0;   // the step the last density launch integrated
   // boundary
   Buffer bx, by, bz, bpsi, bvx, bvy, bvz, bnx, bny, bnz, bsolid, bstart;
   std::uint32_t nb = 0;
@@ -219,16 +225,32 @@ struct Solver::Impl {
       fluid_keys.args(P, n, x[f], y[f], z[f], keys, values);
       ctx.launch(fluid_keys, n);
       sort->sort(keys, values, keys_tmp, values_tmp, n, ncells);
-      reorder.args(n, values, x[f], y[f], z[f], vx[f], vy[f], vz[f], id[f], hold[f], x[b], y[b], z[b], vx[b], vy[b],
-                   vz[b], id[b], hold[b]);
+      reorder.args(n, values, x[f], y[f], z[f], vx[f], vy[f], vz[f], id[f], hold[f], rho, x[b], y[b], z[b], vx[b],
+                   vy[b], vz[b], id[b], hold[b], rho_state);
       ctx.launch(reorder, n);
       front = b;
     }
     cell_starts.args(n, ncells, keys, start);
     ctx.launch(cell_starts, std::size_t(n) + 1);
-    density.args(P, start, x[front], y[front], z[front], bstart, bx, by, bz, bpsi, rho, pres, pterm, vol, phi);
-    ctx.launch(density, n);
+    density_dt = pending_dt;  // integrated once, whatever else sorts the particles again
+    pending_dt = 0;
+    launch_density(P);
     grid_valid = true;
+  }
+
+  // The density kernel with parameters Q (P, or P with the summation for a check).
+  void launch_density(const SimParams& Q) {
+    const int f = front;
+    density.args(Q, static_cast<float>(density_dt), start, x[f], y[f], z[f], vx[f], vy[f], vz[f], rho_state, bstart, bx,
+                 by, bz, bpsi, bvx, bvy, bvz, rho, pres, pterm, vol, phi);
+    ctx.launch(density, n);
+  }
+
+  void launch_forces() {
+    const int f = front;
+    forces.args(P, start, x[f], y[f], z[f], vx[f], vy[f], vz[f], rho, pterm, vol, bstart, bx, by, bz, bpsi, bvx, bvy,
+                bvz, ax, ay, az);
+    ctx.launch(forces, n);
   }
 
   std::uint32_t read_live() {
@@ -305,7 +327,7 @@ struct Solver::Impl {
           emit.args(count, n, next_id, emitter_first_point[e], static_cast<std::uint32_t>(e), ex, ey, ez,
                     static_cast<float>(o.x()), static_cast<float>(o.y()), static_cast<float>(o.z()),
                     static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z()), x[f], y[f], z[f],
-                    vx[f], vy[f], vz[f], id[f], hold[f]);
+                    vx[f], vy[f], vz[f], id[f], hold[f], P.rho0, rho);
           ctx.launch(emit, count);
           n += count;
           next_id += count;
