@@ -24,6 +24,27 @@ const char* field_name(Field field);
 // lies within h. Throws InputError when the frame does not hold the field.
 double probe(const FrameData& frame, Field field, const Vec3d& point, double h);
 
+// A pressure sensor on a solid's face (bw-measure sensor): a disc of `radius` (0: a
+// point) centred at `point` on the face, `normal` the face's unit normal into the
+// fluid. It reads the mean over its disc of the fluid's pressure extrapolated to the
+// face: at sample points `offset` into the fluid (by default h / 2, inside the
+// first layer of fluid, which rests half a spacing from the face), the Shepard
+// average of probe() with support h, less the hydrostatic rise over the offset,
+// rho0 g.normal offset. NaN when no sample point has fluid within h.
+struct Sensor {
+  std::string name;
+  Vec3d point = Vec3d::Zero();
+  Vec3d normal = Vec3d::UnitX();
+  double radius = 0;
+  double h = 0;
+  double offset = -1;              // < 0: h / 2
+  double rho0 = 998;
+  Vec3d gravity{0, 0, -9.81};
+  // The sample points (equal weights): the disc's centre and rings around it.
+  std::vector<Vec3d> samples() const;
+};
+double sensor_pressure(const FrameData& frame, const Sensor& sensor);
+
 // Highest fluid particle within `radius` of the vertical line through (x, y):
 // the free-surface elevation a wave gauge measures. NaN when there is none.
 double surface_elevation(const FrameData& frame, double x, double y, double radius);

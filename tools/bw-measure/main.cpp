@@ -1,13 +1,15 @@
 // bw-measure: measurements on simulated frames, for validation and for users who
 // compare with experiments: dam-break front and residual height, pressure and
-// velocity probes, wave gauges.
+// velocity probes, pressure sensors on solids' faces, loads on solids, wave gauges.
 #include <cmath>
 #include <cstdio>
 
 #include "analysis/dambreak.h"
 #include "analysis/measure.h"
 #include "cli/tool.h"
+#include "common/error.h"
 #include "common/report.h"
+#include "io/run_file.h"
 
 namespace {
 
@@ -23,7 +25,31 @@ struct Options {
   std::vector<double> point;
   std::string field = "p";
   double radius = 0;
+  // sensor
+  std::vector<std::string> sensors;  // NAME=x,y,z or x,y,z
+  std::vector<double> normal{1, 0, 0};
+  double h = 0, offset = -1, rho0 = 998;
+  std::vector<double> gravity{0, 0, -9.81};
+  // loads
+  std::string solid;
 };
+
+// "NAME=x,y,z" or "x,y,z" (named S1, S2, ... by position).
+bw::analysis::Sensor parse_sensor(const std::string& text, std::size_t index) {
+  bw::analysis::Sensor s;
+  std::string coords = text;
+  s.name = "S" + std::to_string(index + 1);
+  if (const auto eq = text.find('='); eq != std::string::npos) {
+    s.name = text.substr(0, eq);
+    coords = text.substr(eq + 1);
+  }
+  double v[3];
+  char tail = 0;
+  if (s.name.empty() || std::sscanf(coords.c_str(), "%lf,%lf,%lf%c", &v[0], &v[1], &v[2], &tail) != 3)
+    bw::fail_input("--at '{}': expected NAME=x,y,z or x,y,z (m)", text);
+  s.point = {v[0], v[1], v[2]};
+  return s;
+}
 
 void print_rows(const Options& o, const std::vector<std::string>& columns, const std::vector<std::vector<double>>& rows,
                 bw::Report* extra) {
@@ -93,16 +119,73 @@ int run_probe(const Options& o, bool gauge) {
   return bw::kExitOk;
 }
 
+// The load history of one solid from the run file's /loads: per frame the impulse
+// since t = 0 and the mean force since the previous frame.
+int run_loads(const Options& o) {
+  const bw::RunRecord run = bw::read_run(o.frames);
+  if (run.loads.empty())
+    bw::fail_input("{}: holds no loads; set `loads = true` in the scene's [output] and run it again", o.frames);
+  std::size_t solid = run.solids.size();
+  std::string names;
+  for (std::size_t k = 0; k < run.solids.size(); ++k) {
+    if (run.solids[k].name == o.solid) solid = k;
+    names += (k ? ", " : "") + run.solids[k].name;
+  }
+  if (solid == run.solids.size()) bw::fail_input("--solid '{}': {} has no such solid ({})", o.solid, o.frames, names);
+  std::vector<std::vector<double>> rows;
+  for (std::size_t f = 0; f < run.loads.size(); ++f) {
+    const Eigen::Vector3d impulse = run.loads[f][solid];
+    Eigen::Vector3d force = Eigen::Vector3d::Constant(std::nan(""));
+    if (f > 0 && run.frames[f].time > run.frames[f - 1].time)
+      force = (impulse - run.loads[f - 1][solid]) / (run.frames[f].time - run.frames[f - 1].time);
+    rows.push_back({run.frames[f].time, force.x(), force.y(), force.z(), impulse.x(), impulse.y(), impulse.z()});
+  }
+  print_rows(o, {"time", "fx", "fy", "fz", "ix", "iy", "iz"}, rows, nullptr);
+  return bw::kExitOk;
+}
+
+int run_sensor(const Options& o) {
+  const Eigen::Vector3d normal(o.normal[0], o.normal[1], o.normal[2]);
+  if (!(normal.norm() > 0)) bw::fail_input("--normal: must not be zero");
+  std::vector<bw::analysis::Sensor> sensors;
+  std::vector<std::string> columns{"time"};
+  for (std::size_t k = 0; k < o.sensors.size(); ++k) {
+    bw::analysis::Sensor s = parse_sensor(o.sensors[k], k);
+    s.normal = normal.normalized();
+    s.radius = o.radius;
+    s.h = o.h;
+    s.offset = o.offset;
+    s.rho0 = o.rho0;
+    s.gravity = {o.gravity[0], o.gravity[1], o.gravity[2]};
+    columns.push_back(s.name);
+    sensors.push_back(s);
+  }
+  std::vector<std::vector<double>> rows;
+  for (const std::string& path : list_frames(o.frames)) {
+    const bw::FrameData frame = bw::read_frame(path);
+    if (frame.p.empty())
+      bw::fail_input("{}: holds no pressure; add \"pressure\" to the scene's [output] fields", path);
+    std::vector<double> row{frame.time};
+    for (const auto& s : sensors) row.push_back(bw::analysis::sensor_pressure(frame, s));
+    rows.push_back(std::move(row));
+  }
+  print_rows(o, columns, rows, nullptr);
+  return bw::kExitOk;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"Measure simulated frames: dam-break front and residual height against Martin & Moyce,\n"
-               "field probes and wave gauges. Prints CSV (or JSON) on standard output.",
+               "field probes, pressure sensors on faces and wave gauges. Prints CSV (or JSON) on standard output.",
                "bw-measure"};
   bw::cli::setup(app,
                  "  bw-measure dambreak out/frames --width 0.1 --band 0.01 --reference examples/data/martin-moyce-1952.csv\n"
                  "  bw-measure probe out/frames --point 0.3,0.05,0.01 --field p --radius 0.02\n"
-                 "  bw-measure gauge out/frames --at 0.5,0.05 --radius 0.01 --json\n");
+                 "  bw-measure gauge out/frames --at 0.5,0.05 --radius 0.01 --json\n"
+                 "  bw-measure sensor out/frames --at P1=0.8245,0.471,0.021 --at P2=0.8245,0.471,0.061 \\\n"
+                 "      --normal 1,0,0 --radius 0.01 --h 0.04\n"
+                 "  bw-measure loads out/run.h5 --solid box\n");
   app.require_subcommand(1);
   Options o;
   auto frames_option = [&](CLI::App* sub) {
@@ -132,6 +215,30 @@ int main(int argc, char** argv) {
       ->required()
       ->check(bw::cli::kPositive);
 
+  CLI::App* sensor = app.add_subcommand(
+      "sensor", "Pressure on a solid's face as a sensor of a given radius reads it (Pa, one column per sensor)");
+  frames_option(sensor);
+  sensor->add_option("--at", o.sensors, "NAME=x,y,z: a sensor's centre on the face (m); repeat for more sensors")
+      ->required();
+  sensor->add_option("--normal", o.normal, "nx,ny,nz: the face's normal, into the fluid")
+      ->delimiter(',')
+      ->expected(3);
+  sensor->add_option("--radius", o.radius, "Radius of the sensor's disc (m); 0: a point")->check(CLI::NonNegativeNumber);
+  sensor->add_option("--h", o.h, "Kernel support (m): the run's smoothing length")->required()->check(bw::cli::kPositive);
+  sensor->add_option("--offset", o.offset, "Distance into the fluid the pressure is read at (m); default h/2")
+      ->check(CLI::NonNegativeNumber);
+  sensor->add_option("--rho0", o.rho0, "Density for the hydrostatic correction over the offset (kg/m^3)")
+      ->check(bw::cli::kPositive);
+  sensor->add_option("--gravity", o.gravity, "gx,gy,gz (m/s^2)")->delimiter(',')->expected(3);
+
+  CLI::App* loads = app.add_subcommand(
+      "loads", "Force (mean since the previous frame, N) and impulse (since t = 0, N s) of the fluid on a solid");
+  loads->add_option("run", o.frames, "Run file (OUTDIR/run.h5 of bw-sim, with [output] loads = true)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  loads->add_option("--solid", o.solid, "The solid's name (its [[solid]] name)")->required();
+  loads->add_flag("--json", o.json, "Print JSON instead of CSV");
+
   CLI::App* gauge = app.add_subcommand("gauge", "Free-surface elevation on a vertical line");
   frames_option(gauge);
   gauge->add_option("--at", o.point, "x,y of the gauge (m)")->required()->delimiter(',')->expected(2);
@@ -142,6 +249,8 @@ int main(int argc, char** argv) {
   return bw::cli::run(app, argc, argv, [&] {
     if (dambreak->parsed()) return run_dambreak(o);
     if (probe->parsed()) return run_probe(o, false);
+    if (sensor->parsed()) return run_sensor(o);
+    if (loads->parsed()) return run_loads(o);
     return run_probe(o, true);
   });
 }
