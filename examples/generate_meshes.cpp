@@ -81,6 +81,13 @@ int main(int argc, char** argv) {
     // every house meets the same flood: 8 m long, 0.2 m thick, as high as the flume.
     mesh::export_mesh(mesh::open_box({0, 0, 0}, {8.0, 7.0, 1.6}, 0.4), dir + "/flume.obj");
     mesh::export_mesh(mesh::box({0, 0, 0}, {8.0, 0.2, 1.6}), dir + "/divider.obj");
+    // SPHERIC Test 2 (examples/spheric2.toml): the closed MARIN tank, cavity 3.22 x 1 x 1 m,
+    // walls 4 cm, and the box on its floor, 0.16 x 0.40 x 0.16 m with the face toward the
+    // water at x = 0.8245 (the experiment's box is 0.161 x 0.403 x 0.161 m: these sizes put
+    // every face on a cell plane of bw-sample's grid at 0.02 and 0.01 m, so the fluid meets
+    // the face where the sensors are).
+    mesh::export_mesh(sealed_box({0, 0, 0}, {3.22, 1.0, 1.0}, 0.04), dir + "/spheric_tank.obj");
+    mesh::export_mesh(mesh::box({0.6645, 0.297, 0}, {0.8245, 0.697, 0.16}), dir + "/spheric_box.obj");
     // A crate, 0.1 m cube, for the floating-body scene.
     mesh::export_mesh(mesh::box({0, 0, 0}, {0.1, 0.1, 0.1}), dir + "/crate.obj");
     // Scene 3: a valley 8 m long falling 0.12 m per metre along x, with parabolic
