@@ -447,6 +447,10 @@ void read_output(Reader& top, Scene& s) {
   if (const toml::table* t = top.table("output")) {
     Reader r(*t, "output", s.path);
     fields = r.strings("fields", fields);
+    const std::int64_t every = r.integer("checkpoint_every", 0);
+    if (every < 0 || every > 1000000)
+      r.fail("checkpoint_every", fmt::format("{} is not a number of frames from 0 to 1000000", every));
+    s.checkpoint_every = static_cast<int>(every);
     r.finish();
   }
   s.fields = FrameFields{};

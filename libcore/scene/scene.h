@@ -113,6 +113,7 @@ struct Scene {
   Aabb domain;                     // required
   FrameFields fields;              // what frames hold besides positions
   std::vector<std::string> field_names;
+  int checkpoint_every = 0;        // output.checkpoint_every: frames between checkpoints, 0: none
 };
 
 // Reads and checks a scene file. Throws InputError "<path>: <key>: <problem>".
