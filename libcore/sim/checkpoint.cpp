@@ -90,6 +90,30 @@ struct Digest {
   }
 };
 
+// The run file's /frames columns, as float64 (what the run file stores them as).
+struct Column {
+  const char* name;
+  double (*get)(const FrameStats&);
+  void (*set)(FrameStats&, double);
+};
+#define BW_COLUMN(field, type)                                                        \
+  Column {                                                                            \
+    #field, [](const FrameStats& r) { return static_cast<double>(r.field); },         \
+        [](FrameStats& r, double v) { r.field = static_cast<type>(v); }               \
+  }
+const Column kColumns[] = {
+    BW_COLUMN(frame, std::int32_t),          BW_COLUMN(time, double),
+    BW_COLUMN(steps, std::int64_t),          BW_COLUMN(dt_min, double),
+    BW_COLUMN(dt_max, double),               BW_COLUMN(fluid, std::int64_t),
+    BW_COLUMN(boundary, std::int64_t),       BW_COLUMN(removed, std::int64_t),
+    BW_COLUMN(density_error_max, double),    BW_COLUMN(density_error_mean, double),
+    BW_COLUMN(kinetic_energy, double),       BW_COLUMN(potential_energy, double),
+    BW_COLUMN(wall_time, double),            BW_COLUMN(elastic_energy, double),
+    BW_COLUMN(speed_max, double),            BW_COLUMN(emitted_energy, double),
+    BW_COLUMN(outflow_energy, double),
+};
+#undef BW_COLUMN
+
 volatile std::sig_atomic_t g_stop_signal = 0;
 
 extern "C" void on_stop_signal(int sig) { g_stop_signal = sig; }
@@ -404,6 +428,12 @@ void write_checkpoint(const std::string& path, const CheckpointHeader& header, S
   root.set_attr<std::int32_t>("checkpoint_every", header.checkpoint_every);
   h5::Group run = root.create_group("run");
   for (const auto& [name, value] : header.run_values) run.set_attr<double>(name, value);
+  h5::Group rows = run.create_group("rows");
+  for (const Column& c : kColumns) {
+    std::vector<double> v;
+    for (const FrameStats& r : header.rows) v.push_back(c.get(r));
+    rows.write<double>(c.name, v);
+  }
   h5::Group state = root.create_group("solver");
   solver.save_state(state);
   file.commit();
@@ -428,6 +458,12 @@ CheckpointHeader read_checkpoint_header(const std::string& path) {
   h.checkpoint_every = root.attr<std::int32_t>("checkpoint_every");
   const h5::Group run = root.open_group("run");
   for (const std::string& name : run.attr_names()) h.run_values.emplace_back(name, run.attr<double>(name));
+  const h5::Group rows = run.open_group("rows");
+  h.rows.resize(static_cast<std::size_t>(h.frame) + 1);
+  for (const Column& c : kColumns) {
+    const std::vector<double> v = read_exact<double>(rows, c.name, h.rows.size());
+    for (std::size_t i = 0; i < v.size(); ++i) c.set(h.rows[i], v[i]);
+  }
   return h;
 }
 

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "compute/device.h"
+#include "io/run_file.h"
 #include "sim/setup.h"
 #include "sim/solver.h"
 
@@ -39,8 +40,10 @@ struct CheckpointHeader {
   double time = 0;           // s, the solver's time (frame / frame_rate)
   double end_time = 0;       // s, what the run goes to
   int checkpoint_every = 0;  // frames
-  // The run driver's accumulators (run.cpp), by name.
+  // The run driver's accumulators (run.cpp), by name, and the run file's rows up to
+  // `frame`: a checkpoint resumes without the run file.
   std::vector<std::pair<std::string, double>> run_values;
+  std::vector<FrameStats> rows;
 
   double value(const std::string& name) const;
 };

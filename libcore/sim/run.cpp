@@ -273,7 +273,8 @@ RunSummary Simulation::run() {
             {"fluid_end", static_cast<double>(sum.fluid_end)},
             {"removed", static_cast<double>(sum.removed)},
             {"previous_energy", previous_energy},
-            {"mean_error_sum", mean_error_sum}};
+            {"mean_error_sum", mean_error_sum},
+            {"boundary_start", static_cast<double>(sum.boundary)}};
   };
   if (s.resuming) {
     const CheckpointHeader& h = s.resume;
@@ -300,21 +301,11 @@ RunSummary Simulation::run() {
     mean_error_sum = h.value("mean_error_sum");
     wall_offset = sum.wall_seconds;
     sum.resumed_from = h.frame;
-    // The rows up to the checkpoint's frame (the run file may hold later ones, written
-    // after it: they are written again).
-    if (!fs::exists(run_path, ec)) fail_input("{}: missing; a run resumes with the run file it wrote", run_path);
-    RunRecord old = read_run(run_path);
-    if (old.frames.size() < static_cast<std::size_t>(h.frame) + 1)
-      fail_input("{}: {} frame rows, but the checkpoint is at frame {}", run_path, old.frames.size(), h.frame);
-    record.frames.assign(old.frames.begin(), old.frames.begin() + h.frame + 1);
+    record.frames = h.rows;
     // The boundary's size at the start (bodies made by fracture since added theirs).
     for (auto& [name, value] : record.parameters)
-      for (const auto& [old_name, old_value] : old.parameters)
-        if (name == "boundary_particles" && old_name == name) value = old_value;
-    sum.boundary = static_cast<std::int64_t>(
-        std::find_if(record.parameters.begin(), record.parameters.end(), [](const auto& v) {
-          return v.first == "boundary_particles";
-        })->second);
+      if (name == "boundary_particles") value = h.value("boundary_start");
+    sum.boundary = static_cast<std::int64_t>(h.value("boundary_start"));
   }
   auto write_checkpoint_now = [&](int f) {
     Stopwatch write_clock;
@@ -329,6 +320,7 @@ RunSummary Simulation::run() {
     h.end_time = s.end_time;
     h.checkpoint_every = s.checkpoint_every;
     h.run_values = run_values();
+    h.rows = record.frames;
     write_checkpoint(ckpt_path, h, solver);
     sum.checkpoint_seconds += write_clock.seconds();
     ++sum.checkpoints;

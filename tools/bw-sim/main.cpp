@@ -94,6 +94,9 @@ int main(int argc, char** argv) {
                  "device are the checkpoint's; SCENE, when given, must be the same)");
   app.add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
 
+  // From the start: a stop requested while the kernels compile still ends with the
+  // first frame and a checkpoint.
+  bw::sim::install_stop_handlers();
   return bw::cli::run(app, argc, argv, [&]() -> int {
     o.validate();
     if (o.listing()) return list_devices();
