@@ -21,6 +21,8 @@ packages=(
   googletest libgtest-dev
   # videos and plots of the studies
   ffmpeg gnuplot-nox
+  # Slurm (SCHEDULER=slurm, docs/cluster.md) and the single-node cluster its test starts
+  slurm-wlm munge
 )
 
 missing=()
