@@ -20,7 +20,7 @@ cleanup() {
 trap cleanup EXIT
 say() { echo "slurm_scene_test: $*"; }
 logs() {  # what went on, when something failed
-  tail -n 20 "$tmp"/slurm/slurm/dambreak/*.out "$tmp/cluster/log/slurmctld.log" 2>/dev/null || true
+  tail -n 20 "$tmp"/out/slurm/dambreak/*.out "$tmp/cluster/log/slurmctld.log" 2>/dev/null || true
 }
 
 rc=0
@@ -34,15 +34,18 @@ vars=(NO_BUILD=1 BUILD="$build" SPACING=0.005 END=0.5 WIDTH=64 HEIGHT=36 RENDER_
 dir=scenes/dambreak/0.005-end0.5
 
 start=$SECONDS
-make -s -C "$src" -f Makefile.scenes dambreak "${vars[@]}" OUT="$tmp/local" >"$tmp/local.log" 2>&1 \
+# Both runs write into the same OUT (the run file records its absolute paths), the
+# local one moved aside after it.
+make -s -C "$src" -f Makefile.scenes dambreak "${vars[@]}" OUT="$tmp/out" >"$tmp/local.log" 2>&1 \
   || { cat "$tmp/local.log"; say "the local run failed"; exit 1; }
+mv "$tmp/out" "$tmp/local"
 say "local run: $((SECONDS - start)) s"
 
 start=$SECONDS
-make -s -C "$src" -f Makefile.scenes dambreak "${vars[@]}" OUT="$tmp/slurm" SCHEDULER=slurm SLURM_SIM_TIME=1 \
+make -s -C "$src" -f Makefile.scenes dambreak "${vars[@]}" OUT="$tmp/out" SCHEDULER=slurm SLURM_SIM_TIME=1 \
   SLURM_SIM_SIGNAL=59 SLURM_CHECKPOINT_EVERY=4 SLURM_TIME=10 SLURM_ARRAY_WIDTH=2 \
   SLURM_SBATCH="--cpus-per-task=1" | tee "$tmp/submit.log"
-jobs=$tmp/slurm/slurm/dambreak/jobs
+jobs=$tmp/out/slurm/dambreak/jobs
 [[ -f $jobs ]] || { say "no job ids ($jobs)"; exit 1; }
 sim=$(awk '$1 == "sim" { print $2 }' "$jobs")
 video=$(awk '$1 == "video" { print $2 }' "$jobs")
@@ -65,17 +68,17 @@ while :; do
   sleep 1
 done
 say "Slurm run: $((SECONDS - start)) s"
-cat "$tmp/slurm/slurm/dambreak/sim.out"
+cat "$tmp/out/slurm/dambreak/sim.out"
 
 fail=0
 restarts=$(scontrol show job "$sim" | grep -o 'Restarts=[0-9]*' | cut -d= -f2)
 if [[ ${restarts:-0} -lt 1 ]]; then say "FAIL: the simulation job was never stopped and requeued"; fail=1; fi
-if ! grep -q "resumed after frame" "$tmp/slurm/slurm/dambreak/sim.out"; then
+if ! grep -q "resumed after frame" "$tmp/out/slurm/dambreak/sim.out"; then
   say "FAIL: the simulation job did not resume from a checkpoint"; fail=1
 fi
 say "simulation job $sim: requeued $restarts times"
 
-a=$tmp/local/$dir b=$tmp/slurm/$dir
+a=$tmp/local/$dir b=$tmp/out/$dir
 [[ ! -e $b/checkpoint.h5 ]] || { say "FAIL: a checkpoint was left in $b"; fail=1; }
 n=0
 while IFS= read -r f; do
