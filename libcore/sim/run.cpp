@@ -192,6 +192,8 @@ RunSummary Simulation::run() {
   remove_old_frames(frames_dir, first_frame);
   const std::string run_path = (out / "run.h5").string();
   const std::string ckpt_path = checkpoint_path(s.options.output);
+  // A run that starts afresh makes the checkpoint of an earlier one meaningless.
+  if (!s.resuming) fs::remove(ckpt_path, ec);
 
   RunRecord record;
   record.scene_text = scene.text;
