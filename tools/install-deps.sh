@@ -29,6 +29,8 @@ packages=(
   # the GPU check's bundle (tools/gpu-bundle.sh): run paths, and the glvnd EGL/GL
   # libraries it carries to a machine that has only a GPU driver
   patchelf libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2 ocl-icd-libopencl1
+  # Slurm (SCHEDULER=slurm, docs/cluster.md) and the single-node cluster its test starts
+  slurm-wlm munge
 )
 
 missing=()

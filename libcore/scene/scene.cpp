@@ -461,6 +461,10 @@ void read_output(Reader& top, Scene& s) {
     Reader r(*t, "output", s.path);
     fields = r.strings("fields", fields);
     s.loads = r.boolean("loads", false);
+    const std::int64_t every = r.integer("checkpoint_every", 0);
+    if (every < 0 || every > 1000000)
+      r.fail("checkpoint_every", fmt::format("{} is not a number of frames from 0 to 1000000", every));
+    s.checkpoint_every = static_cast<int>(every);
     r.finish();
   }
   s.fields = FrameFields{};

@@ -119,6 +119,7 @@ struct Scene {
   FrameFields fields;              // what frames hold besides positions
   std::vector<std::string> field_names;
   bool loads = false;              // [output] loads: the run file records each solid's load
+  int checkpoint_every = 0;        // output.checkpoint_every: frames between checkpoints, 0: none
 };
 
 // Reads and checks a scene file. Throws InputError "<path>: <key>: <problem>".

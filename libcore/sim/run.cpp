@@ -6,6 +6,9 @@
 #include <limits>
 #include <regex>
 
+#include <csignal>
+#include <cstdio>
+
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -14,8 +17,10 @@
 #include "common/terminal.h"
 #include "common/text.h"
 #include "io/frame_file.h"
+#include "io/h5.h"
 #include "io/run_file.h"
 #include "io/run_index.h"
+#include "sim/checkpoint.h"
 
 namespace bw::sim {
 namespace fs = std::filesystem;
@@ -33,15 +38,19 @@ int last_frame(double end_time, double frame_rate) {
 }
 
 // Removes frame files of an earlier run in the same folder, so that the folder holds
-// this run only. Only names this tool writes (six digits .h5) are touched.
-void remove_old_frames(const fs::path& folder) {
+// this run only. Only names this tool writes (six digits .h5) are touched, and only
+// from frame `from` on (a resumed run keeps the frames before its checkpoint).
+void remove_old_frames(const fs::path& folder, int from) {
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) return;
   static const std::regex pattern("[0-9]{6}\\.h5");
+  std::vector<fs::path> old;
   for (const auto& entry : fs::directory_iterator(folder, ec)) {
-    if (entry.is_regular_file() && std::regex_match(entry.path().filename().string(), pattern))
-      fs::remove(entry.path(), ec);
+    const std::string name = entry.path().filename().string();
+    if (entry.is_regular_file() && std::regex_match(name, pattern) && std::stoi(name.substr(0, 6)) >= from)
+      old.push_back(entry.path());
   }
+  for (const fs::path& p : old) fs::remove(p, ec);
 }
 
 }  // namespace
@@ -53,7 +62,30 @@ struct Simulation::Impl {
   std::unique_ptr<compute::Context> context;
   std::unique_ptr<Solver> solver;
   double end_time = 0;
+  int checkpoint_every = 0;
+  std::string fingerprint;         // setup_fingerprint(setup)
+  bool resuming = false;
+  CheckpointHeader resume;         // the checkpoint it goes on from
 };
+
+std::string checkpoint_path(const std::string& output) { return (fs::path(output) / kCheckpointFile).string(); }
+
+void require_checkpoint(const std::string& output) {
+  const std::string path = checkpoint_path(output);
+  std::error_code ec;
+  if (fs::exists(path, ec)) return;
+  const fs::path run = fs::path(output) / "run.h5";
+  const bool complete = fs::exists(run, ec) && h5::is_hdf5_file(run.string()) && read_run(run.string()).status == "complete";
+  fail_input("{}: no checkpoint to resume from{}", path,
+             complete ? " (the run in that folder is complete)"
+                      : " (bw-sim writes one every output.checkpoint_every frames and when SIGTERM or SIGINT stops it)");
+}
+
+namespace {
+
+const char* signal_name(int sig) { return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal"; }
+
+}  // namespace
 
 Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& device, RunOptions options)
     : impl_(std::make_unique<Impl>()) {
@@ -75,7 +107,35 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
     existing = existing.parent_path();
   if (::access(existing.c_str(), W_OK) != 0)
     fail_input("{}: cannot write there ({} is not writable)", s.options.output, existing.string());
+  s.checkpoint_every = s.options.checkpoint_every >= 0 ? s.options.checkpoint_every : scene.checkpoint_every;
+  // A resumed run must be the one the checkpoint was made of: refused before any work
+  // when it is not (another scene, version, end time or device).
+  if (s.options.resume) {
+    const std::string path = checkpoint_path(s.options.output);
+    require_checkpoint(s.options.output);
+    s.resume = read_checkpoint_header(path);
+    const CheckpointHeader& h = s.resume;
+    const std::string tool = s.options.tool + " " BW_VERSION;
+    if (h.tool != tool)
+      fail_input("{}: written by {}, this is {}: a run goes on only with the version it started with", path, h.tool,
+                 tool);
+    if (h.scene_text != scene.text)
+      fail_input("{}: made for another scene ({}); resume without a scene to go on with that one", path, h.scene_path);
+    if (h.end_time != s.end_time)
+      fail_input("{}: the run goes to {} s, not {} s (--end-time)", path, h.end_time, s.end_time);
+    if (h.device != device_identity(device))
+      fail_input("{}: made on {}, this run would be on {}: a run goes on bit-identically only on the device it "
+                 "started on (--device)",
+                 path, h.device, device_identity(device));
+    if (h.frame < 0 || h.frame >= last_frame(s.end_time, scene.time.frame_rate))
+      fail_input("{}: frame {} is not a frame of this run", path, h.frame);
+    s.resuming = true;
+  }
   s.setup = prepare(scene, s.end_time);
+  s.fingerprint = setup_fingerprint(s.setup);
+  if (s.resuming && s.fingerprint != s.resume.fingerprint)
+    fail_input("{}: the scene's particle files changed since the checkpoint was made (setup {} then, {} now)",
+               checkpoint_path(s.options.output), s.resume.fingerprint, s.fingerprint);
   // The time-step control never takes a step above its stability limits; a dt_min
   // above them (a fixed step, dt_min = dt_max, set too large) would override them
   // from the first step on, so it is refused here rather than left to blow up.
@@ -112,6 +172,7 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
                  "within half a spacing of the mesh's faces)",
                  scene.path, 100 * compression, d.x[worst], d.y[worst], d.z[worst]);
   }
+  if (s.resuming) read_checkpoint_state(checkpoint_path(s.options.output), *s.solver);
 }
 
 Simulation::~Simulation() = default;
@@ -130,8 +191,12 @@ RunSummary Simulation::run() {
   std::error_code ec;
   fs::create_directories(frames_dir, ec);
   if (ec) fail_run("{}: cannot create the folder: {}", frames_dir.string(), ec.message());
-  remove_old_frames(frames_dir);
+  const int first_frame = s.resuming ? s.resume.frame + 1 : 0;
+  remove_old_frames(frames_dir, first_frame);
   const std::string run_path = (out / "run.h5").string();
+  const std::string ckpt_path = checkpoint_path(s.options.output);
+  // A run that starts afresh makes the checkpoint of an earlier one meaningless.
+  if (!s.resuming) fs::remove(ckpt_path, ec);
 
   RunRecord record;
   record.scene_text = scene.text;
@@ -186,11 +251,95 @@ RunSummary Simulation::run() {
 
   ProgressLine progress(s.options.progress);
   Stopwatch clock;
+  double wall_offset = 0;  // a resumed run's wall time goes on from its checkpoint's
+  auto wall_now = [&] { return wall_offset + clock.seconds(); };
   const int frames = last_frame(s.end_time, p.frame_rate);
   double previous_energy = 0;
   double mean_error_sum = 0;
   RunIndex index;  // the frames written so far, for OUTDIR/run.xdmf2
   const std::string index_path = run_index_path(out.string());
+
+  // What the run file's rows and summary are made of besides the solver's state: a
+  // checkpoint keeps it, by name.
+  auto run_values = [&]() -> std::vector<std::pair<std::string, double>> {
+    return {{"frames", static_cast<double>(sum.frames)},
+            {"steps", static_cast<double>(sum.steps)},
+            {"simulated", sum.simulated},
+            {"wall_time", sum.wall_seconds},
+            {"particle_steps", sum.particle_steps},
+            {"dt_min", sum.dt_min},
+            {"dt_max", sum.dt_max},
+            {"worst_density_error", sum.worst_density_error},
+            {"worst_density_frame", static_cast<double>(sum.worst_density_frame)},
+            {"worst_density_time", sum.worst_density_time},
+            {"mean_density_error", sum.mean_density_error},
+            {"energy_start", sum.energy_start},
+            {"energy_end", sum.energy_end},
+            {"energy_highest", sum.energy_highest},
+            {"energy_max_rise", sum.energy_max_rise},
+            {"emitted_energy", sum.emitted_energy},
+            {"outflow_energy", sum.outflow_energy},
+            {"fluid_end", static_cast<double>(sum.fluid_end)},
+            {"removed", static_cast<double>(sum.removed)},
+            {"previous_energy", previous_energy},
+            {"mean_error_sum", mean_error_sum},
+            {"boundary_start", static_cast<double>(sum.boundary)}};
+  };
+  if (s.resuming) {
+    const CheckpointHeader& h = s.resume;
+    sum.frames = static_cast<int>(h.value("frames"));
+    sum.steps = static_cast<std::int64_t>(h.value("steps"));
+    sum.simulated = h.value("simulated");
+    sum.wall_seconds = h.value("wall_time");
+    sum.particle_steps = h.value("particle_steps");
+    sum.dt_min = h.value("dt_min");
+    sum.dt_max = h.value("dt_max");
+    sum.worst_density_error = h.value("worst_density_error");
+    sum.worst_density_frame = static_cast<int>(h.value("worst_density_frame"));
+    sum.worst_density_time = h.value("worst_density_time");
+    sum.mean_density_error = h.value("mean_density_error");
+    sum.energy_start = h.value("energy_start");
+    sum.energy_end = h.value("energy_end");
+    sum.energy_highest = h.value("energy_highest");
+    sum.energy_max_rise = h.value("energy_max_rise");
+    sum.emitted_energy = h.value("emitted_energy");
+    sum.outflow_energy = h.value("outflow_energy");
+    sum.fluid_end = static_cast<std::int64_t>(h.value("fluid_end"));
+    sum.removed = static_cast<std::int64_t>(h.value("removed"));
+    previous_energy = h.value("previous_energy");
+    mean_error_sum = h.value("mean_error_sum");
+    wall_offset = sum.wall_seconds;
+    sum.resumed_from = h.frame;
+    record.frames = h.rows;
+    record.loads = h.loads;
+    // The index lists the frames kept from before the stop, then the new ones.
+    index = scan_run(out.string());
+    std::erase_if(index.frames, [&](const IndexFrame& e) { return e.frame > h.frame; });
+    // The boundary's size at the start (bodies made by fracture since added theirs).
+    for (auto& [name, value] : record.parameters)
+      if (name == "boundary_particles") value = h.value("boundary_start");
+    sum.boundary = static_cast<std::int64_t>(h.value("boundary_start"));
+  }
+  auto write_checkpoint_now = [&](int f) {
+    Stopwatch write_clock;
+    CheckpointHeader h;
+    h.tool = record.tool;
+    h.device = device_identity(s.context->device());
+    h.scene_text = scene.text;
+    h.scene_path = record.scene_path;
+    h.fingerprint = s.fingerprint;
+    h.frame = f;
+    h.time = solver.time();
+    h.end_time = s.end_time;
+    h.checkpoint_every = s.checkpoint_every;
+    h.run_values = run_values();
+    h.rows = record.frames;
+    h.loads = record.loads;
+    write_checkpoint(ckpt_path, h, solver);
+    sum.checkpoint_seconds += write_clock.seconds();
+    ++sum.checkpoints;
+    sum.checkpoint = ckpt_path;
+  };
 
   auto write_frame_now = [&](int f, double dt_lo, double dt_hi) {
     const FluidStats st = solver.stats();
@@ -217,7 +366,7 @@ RunSummary Simulation::run() {
     row.speed_max = st.speed_max;
     row.emitted_energy = st.emitted;
     row.outflow_energy = st.outflow;
-    row.wall_time = clock.seconds();
+    row.wall_time = wall_now();
     record.frames.push_back(row);
     if (scene.loads) record.loads.push_back(solver.solid_impulses());
     // Bodies, including those added since the last frame (rows are never reused).
@@ -269,19 +418,29 @@ RunSummary Simulation::run() {
     write_run(record, run_path);
   };
 
+  install_stop_handlers();
+  bool stop_noticed = false;
   try {
-    write_frame_now(0, 0, 0);
-    for (int f = 1; f <= frames; ++f) {
+    if (!s.resuming) write_frame_now(0, 0, 0);
+    for (int f = first_frame == 0 ? 1 : first_frame; f <= frames; ++f) {
       const double target = f / p.frame_rate;
       double lo = std::numeric_limits<double>::infinity(), hi = 0;
       while (solver.time() < target) {
+        if (stop_signal() && !stop_noticed) {
+          // The frame under way is finished first: a checkpoint is always of a frame.
+          stop_noticed = true;
+          progress.clear();
+          if (s.options.progress)
+            std::fprintf(stderr, "bw-sim: %s: finishing frame %d, then writing a checkpoint\n",
+                         signal_name(stop_signal()), f);
+        }
         const std::int64_t particles = solver.fluid_count();
         const StepInfo info = solver.step(target);
         sum.particle_steps += static_cast<double>(particles);
         lo = std::min(lo, info.dt);
         hi = std::max(hi, info.dt);
         if (progress.active()) {
-          const double wall = clock.seconds();
+          const double wall = wall_offset + clock.seconds();
           const double rate = wall > 0 ? solver.steps() / wall : 0;
           const double left = solver.time() > 0 ? wall / solver.time() * (s.end_time - solver.time()) : 0;
           progress.update(fmt::format("frame {}/{}  t {:.3f} s  {:.0f} steps/s  {} particles  {} particle-steps/s  "
@@ -293,6 +452,24 @@ RunSummary Simulation::run() {
       sum.dt_min = std::min(sum.dt_min, lo);
       sum.dt_max = std::max(sum.dt_max, hi);
       write_frame_now(f, lo, hi);
+      const int sig = stop_signal();
+      const bool stop = f < frames && (sig || f == s.options.stop_after_frame);
+      if (stop || (f < frames && s.checkpoint_every > 0 && f % s.checkpoint_every == 0)) write_checkpoint_now(f);
+      if (stop) {
+        progress.clear();
+        record.status = fmt::format("stopped {} at frame {} (t = {} s); bw-sim --resume {} goes on",
+                                    sig ? fmt::format("by {}", signal_name(sig)) : std::string("as asked"), f,
+                                    solver.time(), s.options.output);
+        write_run(record, run_path);
+        sum.stop_signal = sig;
+        sum.stopped = true;
+        sum.steps = solver.steps();
+        sum.simulated = solver.time();
+        sum.wall_seconds = wall_now();
+        sum.emitters_capped = solver.emitters_capped();
+        if (!std::isfinite(sum.dt_min)) sum.dt_min = 0;
+        return sum;
+      }
     }
   } catch (const Error& e) {
     progress.clear();
@@ -307,10 +484,14 @@ RunSummary Simulation::run() {
   progress.clear();
   record.status = "complete";
   write_run(record, run_path);
+  // A complete run needs no checkpoint, and leaves the same files however often it
+  // stopped.
+  fs::remove(ckpt_path, ec);
+  sum.checkpoint.clear();
 
   sum.steps = solver.steps();
   sum.simulated = solver.time();
-  sum.wall_seconds = clock.seconds();
+  sum.wall_seconds = wall_now();
   sum.removed = solver.removed_count();
   sum.emitters_capped = solver.emitters_capped();
   sum.mean_density_error = sum.frames ? mean_error_sum / sum.frames : 0;

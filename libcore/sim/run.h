@@ -5,7 +5,9 @@
 // frame / frame_rate up to the end time, and OUTDIR/run.h5, rewritten (atomically)
 // after every frame with the statistics so far and status "running", then
 // "complete", or the error that stopped the run. Frames written before an error stay
-// valid.
+// valid. Checkpoints (sim/checkpoint.h) every RunOptions::checkpoint_every frames and
+// on SIGTERM or SIGINT; a run resumed from one appends frames and rows as if it had
+// never stopped.
 #pragma once
 
 #include <cstdint>
@@ -25,6 +27,14 @@ struct RunOptions {
   double end_time = 0;         // > 0: replaces the scene's time.end
   bool progress = true;        // a progress line on stderr when it is a terminal
   std::string tool = "bw-sim"; // recorded in the run file with the version
+  // Frames between checkpoints (OUTDIR/checkpoint.h5; sim/checkpoint.h); 0: only when
+  // stopped by SIGTERM or SIGINT; -1: the scene's output.checkpoint_every.
+  int checkpoint_every = -1;
+  // Go on from OUTDIR/checkpoint.h5 instead of starting: the checkpoint must be of
+  // this scene (its text and files), this tool's version and this device.
+  bool resume = false;
+  // Stop after this frame as on SIGTERM (with a checkpoint); -1: run to the end.
+  int stop_after_frame = -1;
 };
 
 struct RunSummary {
@@ -56,6 +66,15 @@ struct RunSummary {
   std::uint64_t device_bytes = 0;
   std::int64_t capacity = 0;
   std::string device;
+  // Checkpoints: the frame a resumed run went on from (-1: it started at frame 0),
+  // and, when the run stopped on SIGTERM or SIGINT, the signal (0: it ran to the
+  // end) and the checkpoint it left.
+  int resumed_from = -1;
+  bool stopped = false;                // before the end, with a checkpoint
+  int stop_signal = 0;
+  std::string checkpoint;
+  double checkpoint_seconds = 0;       // wall time spent writing checkpoints
+  int checkpoints = 0;
 };
 
 class Simulation {
@@ -77,6 +96,12 @@ class Simulation {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// The checkpoint a run in `output` left (OUTDIR/checkpoint.h5).
+std::string checkpoint_path(const std::string& output);
+// Throws InputError saying why when OUTDIR has no checkpoint (none written, or the
+// run is complete).
+void require_checkpoint(const std::string& output);
 
 // Lines for people: steps, wall time, throughput, particles lost, density error,
 // energy drift.

@@ -45,6 +45,10 @@
 #include "rigid/body.h"
 #include "sim/setup.h"
 
+namespace bw::h5 {
+class Group;
+}
+
 namespace bw::sim {
 
 struct StepInfo {
@@ -209,6 +213,13 @@ class Solver {
     std::vector<std::uint32_t> bsolid;
   };
   Snapshot snapshot();
+
+  // Checkpoints (sim/checkpoint.cpp, docs/formats.md "checkpoint"): the whole state
+  // at a frame (just after Simulation wrote it) into `group`, and back into a solver
+  // made from the same setup on the same device, which then steps on exactly as the
+  // saved one would have.
+  void save_state(h5::Group& group);
+  void load_state(const h5::Group& group);
 
  private:
   struct Impl;

@@ -202,6 +202,26 @@ struct Solver::Impl {
 
   int back() const { return 1 - front; }
 
+  // ---- checkpoints (sim/checkpoint.cpp)
+  // The per-particle state of the fluid, in the current (front) order: what a
+  // checkpoint saves and loads, n elements each: rho is state with the continuity
+  // equation (the summation recomputes it). Everything else per particle (p, the
+  // accelerations, the grid) is recomputed from it. A new per-particle state buffer
+  // is one more line here.
+  enum class StateType { f32, u32 };
+  struct StateBuffer {
+    const char* name;
+    Buffer* buffer;
+    StateType type;
+  };
+  std::vector<StateBuffer> state_buffers() {
+    const int f = front;
+    return {{"x", &x[f], StateType::f32},   {"y", &y[f], StateType::f32},   {"z", &z[f], StateType::f32},
+            {"vx", &vx[f], StateType::f32}, {"vy", &vy[f], StateType::f32}, {"vz", &vz[f], StateType::f32},
+            {"id", &id[f], StateType::u32}, {"hold", &hold[f], StateType::u32}, {"rho", &rho, StateType::f32}};
+  }
+  // ---- end of checkpoints
+
   std::uint32_t reduce_blocks(std::uint32_t count, std::uint32_t& chunk) const {
     const std::uint32_t units = static_cast<std::uint32_t>(std::max(1, ctx.device().compute_units));
     std::uint32_t blocks = std::max<std::uint32_t>(1, (count + kReduceChunk - 1) / kReduceChunk);

@@ -1,10 +1,15 @@
 // bw-sim: simulate a scene (WCSPH fluid on OpenCL with static solids) into frame
 // files and a run file.
+#include <csignal>
 #include <cstdio>
+#include <filesystem>
+
+#include <fmt/format.h>
 
 #include "cli/tool.h"
 #include "compute/device.h"
 #include "scene/scene.h"
+#include "sim/checkpoint.h"
 #include "sim/run.h"
 
 namespace {
@@ -12,8 +17,10 @@ namespace {
 struct Options {
   std::string scene;
   std::string output;
-  std::string device = "auto";
+  std::string device;  // empty: auto (a resumed run: the checkpoint's device)
   double end_time = 0;
+  int checkpoint_every = -1;
+  std::string resume;  // OUTDIR
   std::vector<std::string> overrides;  // --set KEY=VALUE, in order
   bool quiet = false;
 
@@ -21,12 +28,26 @@ struct Options {
   // One message per broken constraint (CLI11 checks types and ranges).
   void validate() const {
     if (listing()) return;
-    if (scene.empty()) bw::fail_input("no scene given (bw-sim SCENE -o OUTDIR; see --help)");
-    if (output.empty()) bw::fail_input("no output folder given (-o OUTDIR)");
-    if (!bw::compute::valid_device_choice(device))
+    if (!resume.empty()) {
+      if (!output.empty() && std::filesystem::path(output).lexically_normal() != std::filesystem::path(resume).lexically_normal())
+        bw::fail_input("--resume {} and -o {}: a resumed run writes where it started (leave out -o)", resume, output);
+    } else {
+      if (scene.empty()) bw::fail_input("no scene given (bw-sim SCENE -o OUTDIR; see --help)");
+      if (output.empty()) bw::fail_input("no output folder given (-o OUTDIR)");
+    }
+    if (!device.empty() && !bw::compute::valid_device_choice(device))
       bw::fail_input("--device: '{}' is not auto, cpu, gpu, list or a device number", device);
   }
 };
+
+// The device a checkpoint was made on, when this machine has it.
+bw::compute::DeviceInfo device_of_checkpoint(const std::string& path, const std::string& label) {
+  for (const auto& d : bw::compute::list_devices())
+    if (bw::sim::device_identity(d) == label) return d;
+  bw::fail_input("{}: made on {}, which this machine does not have (bw-sim --device list): a run goes on "
+                 "bit-identically only on the device it started on",
+                 path, label);
+}
 
 int list_devices() {
   const auto devices = bw::compute::list_devices();
@@ -49,6 +70,8 @@ int main(int argc, char** argv) {
                  "  bw-sim scene.toml -o out/scene --end-time 0.5 --device cpu --quiet\n"
                  "  bw-sim examples/dambreak.toml -o out/fine --set spacing=0.005 --set fluid.c0=40 \\\n"
                  "      --set 'solid[0].particles=../out/examples/tank-0.005.h5'\n"
+                 "  bw-sim scene.toml -o out/scene --checkpoint-every 10   # then, after SIGTERM or a crash:\n"
+                 "  bw-sim --resume out/scene\n"
                  "  bw-sim --device list\n"
                  "  bw-info out/dambreak/run.h5 --json\n");
   Options o;
@@ -62,21 +85,60 @@ int main(int argc, char** argv) {
                  "Override a scene key, KEY=VALUE (repeatable): time.cfl=0.2, fluid.block[0].max=[0.1, 0.15, 0.2], "
                  "solid[0].particles=tank.h5 (docs/scene.md)")
       ->allow_extra_args(false);  // one KEY=VALUE per --set: the scene may follow it
+  app.add_option("--checkpoint-every", o.checkpoint_every,
+                 "Write OUTDIR/checkpoint.h5 every N frames (0: only when SIGTERM or SIGINT stops the run; default: the "
+                 "scene's output.checkpoint_every)")
+      ->check(CLI::Range(0, 1000000));
+  app.add_option("--resume", o.resume,
+                 "Go on from OUTDIR/checkpoint.h5, appending frames and run-file rows (the scene, its end time and the "
+                 "device are the checkpoint's; SCENE, when given, must be the same)");
   app.add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
 
+  // From the start: a stop requested while the kernels compile still ends with the
+  // first frame and a checkpoint.
+  bw::sim::install_stop_handlers();
   return bw::cli::run(app, argc, argv, [&]() -> int {
     o.validate();
     if (o.listing()) return list_devices();
-    const bw::scene::Scene scene = bw::scene::load_scene(o.scene, o.overrides);
-    const bw::compute::DeviceInfo device = bw::compute::choose_device(o.device);
     bw::sim::RunOptions options;
-    options.output = o.output;
+    options.output = o.resume.empty() ? o.output : o.resume;
     options.end_time = o.end_time;
     options.progress = !o.quiet;
+    options.checkpoint_every = o.checkpoint_every;
+    bw::scene::Scene scene;
+    bw::compute::DeviceInfo device;
+    if (!o.resume.empty()) {
+      // The checkpoint names the scene (its effective text), the end time and the
+      // device; Simulation refuses a checkpoint that does not fit them.
+      const std::string path = bw::sim::checkpoint_path(o.resume);
+      bw::sim::require_checkpoint(o.resume);
+      const bw::sim::CheckpointHeader h = bw::sim::read_checkpoint_header(path);
+      scene = o.scene.empty() ? bw::scene::parse_scene(h.scene_text, h.scene_path)
+                              : bw::scene::load_scene(o.scene, o.overrides);
+      if (o.scene.empty() && !o.overrides.empty())
+        bw::fail_input("--set: a resumed run goes on with the scene of its checkpoint; give no --set");
+      if (o.end_time <= 0) options.end_time = h.end_time;
+      if (o.checkpoint_every < 0) options.checkpoint_every = h.checkpoint_every;
+      device = o.device.empty() ? device_of_checkpoint(path, h.device) : bw::compute::choose_device(o.device);
+      options.resume = true;
+    } else {
+      scene = bw::scene::load_scene(o.scene, o.overrides);
+      device = bw::compute::choose_device(o.device.empty() ? "auto" : o.device);
+    }
     bw::sim::Simulation simulation(scene, device, options);
     const bw::sim::RunSummary summary = simulation.run();
+    if (summary.stop_signal) {
+      // Always said, also with --quiet: the run did not finish.
+      std::fprintf(stderr,
+                   "bw-sim: stopped by %s after frame %d (t = %.6g s); checkpoint %s; go on with: bw-sim --resume %s\n",
+                   summary.stop_signal == SIGINT ? "SIGINT" : "SIGTERM", summary.frames - 1, summary.simulated,
+                   summary.checkpoint.c_str(), options.output.c_str());
+      return 128 + summary.stop_signal;
+    }
     if (!o.quiet) {
-      std::fprintf(stderr, "bw-sim: %s -> %s\n%s", o.scene.c_str(), o.output.c_str(),
+      std::fprintf(stderr, "bw-sim: %s -> %s%s\n%s", o.scene.empty() ? scene.path.c_str() : o.scene.c_str(),
+                   options.output.c_str(),
+                   summary.resumed_from >= 0 ? fmt::format(" (resumed after frame {})", summary.resumed_from).c_str() : "",
                    bw::sim::format_summary(summary).c_str());
     }
     return bw::kExitOk;

@@ -1,0 +1,219 @@
+// Checkpoints and resume (sim/checkpoint.h): a breakable wall that a block of water
+// and a jet break into fragments, stopped after a frame and resumed, writes the same
+// frames (byte for byte) and run-file rows as a run that never stopped; checkpoints
+// of another scene, version, end time or device are refused with one line; SIGTERM
+// stops bw-sim after a whole frame with a checkpoint and how to go on.
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include <gtest/gtest.h>
+
+#include "common/error.h"
+#include "compute/device.h"
+#include "fracture_fixtures.h"
+#include "io/frame_file.h"
+#include "io/h5.h"
+#include "io/run_file.h"
+#include "scene/scene.h"
+#include "sim/checkpoint.h"
+#include "sim/run.h"
+#include "test_support.h"
+
+namespace bw {
+namespace {
+
+constexpr double kEnd = 0.06;  // 6 frames at 100 per second; the wall breaks in the first two
+
+std::string scene_text() {
+  return test::fracture_scene(10.0, 0.45, kEnd,
+                              "[fracture]\nmax_chunks = 8\n"
+                              "[output]\nfields = [\"velocity\", \"density\", \"pressure\", \"id\", \"boundary\"]\n"
+                              "[[fluid.emitter]]\nshape = \"disc\"\ncenter = [0.02, 0.15, 0.3]\nnormal = [1, 0, 0]\n"
+                              "radius = 0.04\nspeed = 2\n");
+}
+
+std::string bytes_of(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+struct Fixture {
+  test::TempDir dir;
+  scene::Scene scene;
+  compute::DeviceInfo device = compute::choose_device("auto");
+  Fixture() {
+    test::write_fracture_solids(dir.file(""));
+    std::ofstream(dir.file("scene.toml")) << scene_text();
+    scene = scene::load_scene(dir.file("scene.toml"));
+  }
+  sim::RunSummary run(const std::string& out, int stop_after = -1, bool resume = false, const std::string& tool = "bw-sim",
+                      const scene::Scene* other = nullptr, const compute::DeviceInfo* on = nullptr, double end = 0) {
+    sim::RunOptions o;
+    o.output = dir.file(out);
+    o.progress = false;
+    o.stop_after_frame = stop_after;
+    o.resume = resume;
+    o.tool = tool;
+    o.end_time = end;
+    sim::Simulation simulation(other ? *other : scene, on ? *on : device, o);
+    return simulation.run();
+  }
+};
+
+// Everything of two run files but the wall times.
+void expect_same_run(const RunRecord& a, const RunRecord& b) {
+  EXPECT_EQ(a.status, b.status);
+  EXPECT_EQ(a.scene_text, b.scene_text);
+  EXPECT_EQ(a.device, b.device);
+  ASSERT_EQ(a.frames.size(), b.frames.size());
+  for (std::size_t i = 0; i < a.frames.size(); ++i) {
+    FrameStats x = a.frames[i], y = b.frames[i];
+    x.wall_time = y.wall_time = 0;
+    EXPECT_EQ(std::memcmp(&x, &y, sizeof(x)), 0) << "row " << i;
+  }
+  ASSERT_EQ(a.bodies.size(), b.bodies.size());
+  for (std::size_t i = 0; i < a.bodies.size(); ++i) {
+    EXPECT_EQ(a.bodies[i].name, b.bodies[i].name);
+    EXPECT_EQ(a.bodies[i].mass, b.bodies[i].mass);
+    EXPECT_EQ(a.bodies[i].created_time, b.bodies[i].created_time);
+    EXPECT_EQ(a.bodies[i].reference_center, b.bodies[i].reference_center);
+  }
+  ASSERT_EQ(a.fractures.size(), b.fractures.size());
+  for (std::size_t i = 0; i < a.fractures.size(); ++i) {
+    EXPECT_EQ(a.fractures[i].time, b.fractures[i].time);
+    EXPECT_EQ(a.fractures[i].seeds, b.fractures[i].seeds);
+    EXPECT_EQ(a.fractures[i].child_body, b.fractures[i].child_body);
+  }
+  EXPECT_EQ(a.parameters, b.parameters);
+  ASSERT_EQ(a.summary.size(), b.summary.size());
+  for (std::size_t i = 0; i < a.summary.size(); ++i)
+    if (a.summary[i].first != "wall_time") {
+      EXPECT_EQ(a.summary[i], b.summary[i]);
+    }
+}
+
+void expect_same_frames(const std::string& a, const std::string& b, int frames) {
+  for (int f = 0; f <= frames; ++f) {
+    const std::string x = frame_file_name(a + "/frames", f), y = frame_file_name(b + "/frames", f);
+    ASSERT_TRUE(test::exists(x) && test::exists(y)) << x << " " << y;
+    EXPECT_EQ(bytes_of(x), bytes_of(y)) << "frame " << f;
+  }
+}
+
+TEST(Checkpoint, ResumedRunIsBitIdenticalWithBodiesAndFracture) {
+  Fixture fx;
+  const sim::RunSummary whole = fx.run("whole");
+  ASSERT_FALSE(whole.stopped);
+  EXPECT_FALSE(test::exists(fx.dir.file("whole/checkpoint.h5")));
+  const RunRecord reference = read_run(fx.dir.file("whole/run.h5"));
+  ASSERT_FALSE(reference.fractures.empty());
+  ASSERT_EQ(reference.frames.size(), 7u);
+
+  // Stopped after frame 2: the wall has broken and its fragments move; then resumed.
+  const sim::RunSummary first = fx.run("parts", 2);
+  ASSERT_TRUE(first.stopped);
+  ASSERT_TRUE(test::exists(fx.dir.file("parts/checkpoint.h5")));
+  EXPECT_FALSE(test::exists(fx.dir.file("parts/frames/000003.h5")));
+  {
+    const RunRecord stopped = read_run(fx.dir.file("parts/run.h5"));
+    EXPECT_EQ(stopped.frames.size(), 3u);
+    EXPECT_NE(stopped.status.find("stopped"), std::string::npos) << stopped.status;
+    ASSERT_FALSE(stopped.fractures.empty()) << "the wall should break before the checkpoint";
+    EXPECT_GT(stopped.bodies.size(), 1u);
+  }
+  const sim::RunSummary second = fx.run("parts", -1, true);
+  EXPECT_EQ(second.resumed_from, 2);
+  EXPECT_FALSE(test::exists(fx.dir.file("parts/checkpoint.h5")));
+  expect_same_frames(fx.dir.file("whole"), fx.dir.file("parts"), 6);
+  expect_same_run(reference, read_run(fx.dir.file("parts/run.h5")));
+  EXPECT_EQ(whole.steps, second.steps);
+  EXPECT_EQ(whole.particle_steps, second.particle_steps);
+
+  // Twice stopped, at frames 1 and 4 (before and after the fracture), the same again.
+  fx.run("thrice", 1);
+  fx.run("thrice", 4, true);
+  fx.run("thrice", -1, true);
+  expect_same_frames(fx.dir.file("whole"), fx.dir.file("thrice"), 6);
+  expect_same_run(reference, read_run(fx.dir.file("thrice/run.h5")));
+}
+
+// One InputError line containing `what`.
+void expect_refused(const std::function<void()>& f, const std::string& what) {
+  try {
+    f();
+    ADD_FAILURE() << "not refused: " << what;
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find(what), std::string::npos) << m;
+    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+  }
+}
+
+TEST(Checkpoint, OtherSceneVersionEndOrDeviceIsRefused) {
+  Fixture fx;
+  fx.run("run", 1, false, "bw-sim");
+  const std::string ckpt = fx.dir.file("run/checkpoint.h5");
+  ASSERT_TRUE(test::exists(ckpt));
+  const std::string before = bytes_of(ckpt);
+
+  const scene::Scene other = scene::load_scene(fx.dir.file("scene.toml"), {"solid[1].frc=0.5"});
+  expect_refused([&] { fx.run("run", -1, true, "bw-sim", &other); }, "made for another scene");
+  expect_refused([&] { fx.run("run", -1, true, "bw-sim-next"); }, "a run goes on only with the version it started with");
+  expect_refused([&] { fx.run("run", -1, true, "bw-sim", nullptr, nullptr, 0.05); }, "the run goes to 0.06 s, not 0.05 s");
+  compute::DeviceInfo elsewhere = fx.device;
+  elsewhere.compute_units += 1;
+  expect_refused([&] { fx.run("run", -1, true, "bw-sim", nullptr, &elsewhere); },
+                 "a run goes on bit-identically only on the device it started on");
+  // Nothing was written by the refusals; the checkpoint still resumes.
+  EXPECT_EQ(bytes_of(ckpt), before);
+  EXPECT_FALSE(test::exists(fx.dir.file("run/frames/000002.h5")));
+  const sim::RunSummary done = fx.run("run", -1, true);
+  EXPECT_EQ(done.frames, 7);
+  expect_refused([&] { fx.run("run", -1, true); }, "no checkpoint to resume from (the run in that folder is complete)");
+  // Another kind of file under the checkpoint's name.
+  std::ofstream(ckpt) << "not a checkpoint";
+  expect_refused([&] { fx.run("run", -1, true); }, ckpt);
+}
+
+// bw-sim end to end: SIGTERM stops it after a whole frame, with a checkpoint, the
+// place it stopped and how to go on, and exit status 143; --resume finishes the run
+// as if it had never stopped.
+TEST(Checkpoint, SigtermStopsBwSimWithACheckpointAndResumeFinishes) {
+  Fixture fx;
+  const std::string sim = test::tool("bw-sim");
+  const std::string scene = fx.dir.file("scene.toml");
+  auto whole = test::run(sim + " " + scene + " -o " + fx.dir.file("whole") + " --quiet");
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  // Stopped once frame 1 is on disk (so in frame 2 or later).
+  const std::string out = fx.dir.file("stopped");
+  auto stopped = test::run("(" + sim + " " + scene + " -o " + out + " --quiet & pid=$!; while [ ! -e " + out +
+                           "/frames/000001.h5 ]; do sleep 0.02; done; kill -TERM $pid; wait $pid; echo status $?)");
+  ASSERT_NE(stopped.out.find("status 143"), std::string::npos) << stopped.out << stopped.err;
+  EXPECT_NE(stopped.err.find("bw-sim: stopped by SIGTERM after frame "), std::string::npos) << stopped.err;
+  EXPECT_NE(stopped.err.find("go on with: bw-sim --resume " + out), std::string::npos) << stopped.err;
+  ASSERT_TRUE(test::exists(out + "/checkpoint.h5"));
+  const RunRecord partial = read_run(out + "/run.h5");
+  for (std::size_t f = 0; f < partial.frames.size(); ++f) EXPECT_NO_THROW(read_frame(frame_file_name(out + "/frames", static_cast<int>(f))));
+  // The checkpoint holds the run file's rows: make deletes a target whose recipe
+  // stopped (.DELETE_ON_ERROR), and the run goes on without it.
+  std::remove((out + "/run.h5").c_str());
+  if (partial.frames.size() < 7) {
+    auto resumed = test::run(sim + " --resume " + out + " --quiet");
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  }
+  expect_same_frames(fx.dir.file("whole"), out, 6);
+  expect_same_run(read_run(fx.dir.file("whole/run.h5")), read_run(out + "/run.h5"));
+  // Wrong uses: no checkpoint there, and a folder other than the run's.
+  auto none = test::run(sim + " --resume " + fx.dir.file("whole") + " --quiet");
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_EQ(test::line_count(none.err), 1) << none.err;
+  auto other = test::run(sim + " --resume " + out + " -o " + fx.dir.file("elsewhere"));
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_NE(other.err.find("a resumed run writes where it started"), std::string::npos) << other.err;
+}
+
+}  // namespace
+}  // namespace bw
