@@ -5,6 +5,7 @@
 #include "analysis/dambreak.h"
 #include "analysis/measure.h"
 #include "common/error.h"
+#include "io/frame_file.h"
 #include "test_support.h"
 
 namespace {
@@ -83,6 +84,56 @@ TEST(Probe, AveragesAFieldAndGaugesTheSurface) {
   EXPECT_TRUE(std::isnan(an::probe(f, an::Field::pressure, {1, 1, 1}, 0.02)));
   EXPECT_NEAR(an::surface_elevation(f, 0.1, 0.1, 0.01), 0.095, 1e-6);
   EXPECT_THROW(an::probe(f, an::Field::density, {0.1, 0.1, 0.05}, 0.02), bw::InputError);
+}
+
+// A hydrostatic pool against a wall (x = 0) and on a floor (z = 0): the sensor on the
+// wall reads rho g times its depth, and so does the one on the floor, whose pressure is
+// read h / 2 up and corrected by rho0 g (h / 2). Shepard averages of a linear field
+// are off by the gradient times the weights' centroid offset, under a few percent
+// within a spacing of a face; the discs' symmetric rings cancel most of it.
+TEST(Sensor, ReadsTheHydrostaticPressureOnAWallAndTheFloor) {
+  const double rho = 998, g = 9.81, top = 0.3, h = 0.02;
+  FrameData f = block({0, 0, 0}, {0.2, 0.2, top}, 0.01, 0);
+  for (float z : f.z) f.p.push_back(static_cast<float>(rho * g * (top - z)));
+  an::Sensor wall;
+  wall.point = {0, 0.1, 0.1};
+  wall.normal = {1, 0, 0};
+  wall.radius = 0.01;
+  wall.h = h;
+  wall.rho0 = rho;
+  EXPECT_EQ(wall.samples().size(), 19u);
+  EXPECT_NEAR(an::sensor_pressure(f, wall) / (rho * g * (top - 0.1)), 1.0, 0.02);
+  an::Sensor floor = wall;
+  floor.point = {0.1, 0.1, 0};
+  floor.normal = {0, 0, 1};
+  EXPECT_NEAR(an::sensor_pressure(f, floor) / (rho * g * top), 1.0, 0.02);
+  an::Sensor point = floor;
+  point.radius = 0;
+  EXPECT_EQ(point.samples().size(), 1u);
+  EXPECT_NEAR(an::sensor_pressure(f, point) / (rho * g * top), 1.0, 0.02);
+  an::Sensor dry = wall;
+  dry.point = {0, 0.1, 0.5};  // above the water
+  EXPECT_TRUE(std::isnan(an::sensor_pressure(f, dry)));
+}
+
+TEST(BwMeasure, SensorThroughTheTool) {
+  bw::test::TempDir dir;
+  for (int k = 0; k < 2; ++k) {
+    FrameData f = block({0, 0, 0}, {0.2, 0.2, 0.2}, 0.01, 0.1 * k);
+    f.frame = k;
+    for (float z : f.z) f.p.push_back(static_cast<float>(998 * 9.81 * (0.2 - z) * (1 + k)));
+    bw::write_frame(f, bw::frame_file_name(dir.path(), k));
+  }
+  const std::string tool = bw::test::tool("bw-measure");
+  const auto csv = bw::test::run(tool + " sensor " + dir.path() +
+                                 " --at P1=0,0.1,0.1 --at 0,0.1,0.05 --normal 1,0,0 --radius 0.01 --h 0.02");
+  ASSERT_EQ(csv.exit_code, 0) << csv.err;
+  EXPECT_EQ(csv.out.rfind("time,P1,S2\n", 0), 0u) << csv.out;
+  EXPECT_EQ(bw::test::line_count(csv.out), 3) << csv.out;
+  const auto bad = bw::test::run(tool + " sensor " + dir.path() + " --at P1=0,0.1 --h 0.02");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("P1=0,0.1"), std::string::npos) << bad.err;
+  EXPECT_EQ(bw::test::line_count(bad.err), 1) << bad.err;
 }
 
 TEST(BwMeasure, DambreakThroughTheTool) {

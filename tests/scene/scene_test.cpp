@@ -74,6 +74,9 @@ TEST(Scene, MinimalSceneHasDocumentedDefaults) {
   EXPECT_LT(s.fluid.gamma1, 0) << "gamma1 defaults to the calibrated value, resolved by the solver";
   EXPECT_LT(s.fluid.gamma2, 0) << "gamma2 defaults to gamma1 / 2, resolved by the solver";
   EXPECT_EQ(s.fluid.max_particles, 0);
+  EXPECT_EQ(s.fluid.density, bw::scene::DensityScheme::summation);
+  EXPECT_DOUBLE_EQ(s.fluid.diffusion, 0.1) << "delta, used with the continuity equation";
+  EXPECT_FALSE(s.loads);
   ASSERT_EQ(s.blocks.size(), 1u);
   EXPECT_TRUE(s.fields.velocity);
   EXPECT_FALSE(s.fields.density || s.fields.pressure || s.fields.id || s.fields.boundary);
@@ -186,6 +189,18 @@ TEST(SceneErrors, UnknownKeysNameTheirPath) {
                "solid[0].breakible: unknown key (did you mean 'breakable'?)");
   expect_error(f, kMinimal + "[fracture]\nwindw = 0.01\n", "fracture.windw: unknown key (did you mean 'window'?)");
   expect_error(f, kMinimal + "[output]\nfields = [\"speed\"]\n", "output.fields: 'speed' is not a field");
+}
+
+TEST(Scene, DensitySchemeAndLoads) {
+  SceneFolder f;
+  const Scene s = load_scene(f.write(kMinimal + "[fluid]\ndensity = \"continuity\"\ndiffusion = 0.05\n[output]\nloads = true\n"));
+  EXPECT_EQ(s.fluid.density, bw::scene::DensityScheme::continuity);
+  EXPECT_DOUBLE_EQ(s.fluid.diffusion, 0.05);
+  EXPECT_TRUE(s.loads);
+  expect_error(f, kMinimal + "[fluid]\ndensity = \"riemann\"\n", "fluid.density: \"riemann\" is not a density scheme");
+  expect_error(f, kMinimal + "[fluid]\ndensity = \"continuity\"\ndiffusion = 2\n", "fluid.diffusion: 2 must be between 0");
+  expect_error(f, kMinimal + "[fluid]\ndiffusion = 0.1\n", "fluid.diffusion: density diffusion needs fluid.density = \"continuity\"");
+  expect_error(f, kMinimal + "[output]\nloads = 1\n", "output.loads: expected true or false");
 }
 
 TEST(SceneErrors, OutOfRangeValues) {

@@ -1,0 +1,209 @@
+// The density schemes (docs/scene.md, "Density") and the loads on solids: the
+// continuity equation changes a particle's density exactly as the kernel sum changes,
+// its diffusion leaves a pool at hydrostatic rest alone, and the loads the run file
+// records on a tank carry the weight of its water.
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "compute/context.h"
+#include "compute/device.h"
+#include "io/run_file.h"
+#include "scene/scene.h"
+#include "sim/setup.h"
+#include "sim/solver.h"
+#include "sim_fixtures.h"
+#include "test_support.h"
+
+namespace bw {
+namespace {
+
+constexpr double kSpacing = 0.01;
+
+compute::Context& context() {
+  static compute::Context c(compute::choose_device("auto"));
+  return c;
+}
+
+// A dam-break column 0.1 x 0.06 x 0.2 m in a closed tank, with extra scene lines.
+std::string write_column(const test::TempDir& dir, const std::string& fluid, const std::string& output = "") {
+  const Eigen::Vector3i n(40, 6, 30);
+  test::write_tank(dir.file("tank.h5"), n, kSpacing);
+  std::ofstream(dir.file("column.toml")) << fmt::format(R"(
+spacing = 0.01
+[time]
+end = 1.0
+frame_rate = 20
+[domain]
+min = [-0.05, -0.05, -0.05]
+max = [0.46, 0.12, 0.36]
+[fluid]
+mu = 0.02
+{}
+[[fluid.block]]
+min = [0.01, 0.01, 0.01]
+max = [0.11, 0.06, 0.21]
+[[solid]]
+name = "tank"
+particles = "tank.h5"
+[output]
+fields = ["density", "id"]
+{}
+)",
+                                                        fluid, output);
+  return dir.file("column.toml");
+}
+
+std::map<std::uint32_t, std::pair<double, double>> densities(sim::Solver& solver) {
+  FrameFields fields;
+  fields.density = true;
+  fields.id = true;
+  const FrameData d = solver.frame(fields, 0);
+  const std::vector<float> summed = solver.summed_density();
+  std::map<std::uint32_t, std::pair<double, double>> out;  // id -> (own, summed)
+  for (std::size_t i = 0; i < d.id.size(); ++i) out[static_cast<std::uint32_t>(d.id[i])] = {d.rho[i], summed[i]};
+  return out;
+}
+
+// Without diffusion, d rho / dt is the time derivative of the kernel sum (fluid and
+// boundary terms): over the first 0.05 s of the collapse, when the column's foot
+// compresses against the floor and the far wall, each particle's density changes as
+// its sum does, up to the first-order error of integrating the rate once a step
+// (4% of the change here; a wrong sign or factor in any term gives 100% or more).
+TEST(Continuity, DensityChangesAsTheKernelSumDoes) {
+  test::TempDir dir;
+  const scene::Scene scene = scene::load_scene(write_column(dir, "density = \"continuity\"\ndiffusion = 0"));
+  sim::Solver solver(sim::prepare(scene, scene.time.end), context());
+  const auto before = densities(solver);
+  while (solver.time() < 0.05) solver.step(0.05);
+  const auto after = densities(solver);
+  double change2 = 0, error2 = 0, largest = 0;
+  for (const auto& [id, now] : after) {
+    const auto& then = before.at(id);
+    const double own = now.first - then.first, summed = now.second - then.second;
+    change2 += summed * summed;
+    error2 += (own - summed) * (own - summed);
+    largest = std::max(largest, std::abs(summed));
+  }
+  const double rms_change = std::sqrt(change2 / after.size()), rms_error = std::sqrt(error2 / after.size());
+  test::figure("steps", static_cast<double>(solver.steps()));
+  test::figure("RMS change of the kernel sum", rms_change, "kg/m^3");
+  test::figure("largest change of the kernel sum", largest, "kg/m^3");
+  test::figure("RMS difference of the continuity density's change", rms_error, "kg/m^3");
+  ASSERT_GT(rms_change, 0.5) << "the column moved";
+  EXPECT_LT(rms_error, 0.1 * rms_change);
+}
+
+// The diffusion acts on the density less its hydrostatic part, so a pool that starts
+// hydrostatic is not diffused: its first step gives the same densities with delta =
+// 0.1 as with none, to 1e-3 kg/m^3 (the step moves the particles off the positions
+// their rest was set for). With the plain Laplacian the one-sided sums at the surface
+// and the floor would move those layers by about delta h c0 (rho0 g h / c0^2) / h^2 dt
+// = 0.02 kg/m^3 in that step.
+TEST(Continuity, DiffusionLeavesAHydrostaticPoolAlone) {
+  test::TempDir dir;
+  const Eigen::Vector3i n(10, 10, 24);
+  test::write_tank(dir.file("tank.h5"), n, kSpacing);
+  auto first_step = [&](double delta) {
+    std::ofstream(dir.file("pool.toml")) << fmt::format(R"(
+spacing = 0.01
+[time]
+end = 0.1
+frame_rate = 100
+[domain]
+min = [-0.05, -0.05, -0.05]
+max = [0.16, 0.16, 0.3]
+[fluid]
+c0 = 20
+density = "continuity"
+diffusion = {}
+[[fluid.block]]
+min = [0.01, 0.01, 0.01]
+max = [0.10, 0.10, 0.21]
+[[solid]]
+particles = "tank.h5"
+[output]
+fields = ["density", "id"]
+)",
+                                                        delta);
+    const scene::Scene scene = scene::load_scene(dir.file("pool.toml"));
+    sim::Solver solver(sim::prepare(scene, scene.time.end), context());
+    const auto start = densities(solver);
+    solver.step(0.1);
+    return std::pair{start, densities(solver)};
+  };
+  const auto [start, plain] = first_step(0);
+  const auto diffused = first_step(0.1).second;
+  double worst = 0, moved = 0, deepest = 0;
+  for (const auto& [id, now] : diffused) {
+    worst = std::max(worst, std::abs(now.first - plain.at(id).first));
+    moved = std::max(moved, std::abs(plain.at(id).first - start.at(id).first));
+    deepest = std::max(deepest, start.at(id).first);
+  }
+  const double rho0 = 998, g = 9.81, c0 = 20;
+  test::figure("largest change of a density in the first step", moved, "kg/m^3");
+  test::figure("largest difference the diffusion made", worst, "kg/m^3");
+  test::figure("densest at the start (the bottom layer)", deepest, "kg/m^3");
+  // The hydrostatic start: Tait's law at rho0 g d, d = 0.195 m at the bottom layer.
+  EXPECT_NEAR(deepest, rho0 * std::pow(1 + 7 * g * 0.195 / (c0 * c0), 1.0 / 7), 0.01);
+  EXPECT_LT(worst, 5e-3);
+}
+
+// The loads the run file records: the tank of a still column carries the water's
+// weight (mean over the last 0.4 s, when the pool has settled) and no net sideways
+// force (its walls push the water both ways); bw-measure loads prints the history.
+TEST(Loads, ATankCarriesTheWeightOfItsWater) {
+  test::TempDir dir;
+  const Eigen::Vector3i n(10, 6, 24);
+  test::write_tank(dir.file("tank.h5"), n, kSpacing);
+  std::ofstream(dir.file("still.toml")) << R"(
+spacing = 0.01
+[time]
+end = 1.0
+frame_rate = 20
+[domain]
+min = [-0.05, -0.05, -0.05]
+max = [0.16, 0.12, 0.3]
+[fluid]
+mu = 0.5
+[[fluid.block]]
+min = [0.01, 0.01, 0.01]
+max = [0.10, 0.06, 0.16]
+[[solid]]
+name = "tank"
+particles = "tank.h5"
+[output]
+loads = true
+)";
+  const sim::RunSummary summary = test::run_scene(dir.file("still.toml"), dir.file("out"));
+  const RunRecord run = read_run(dir.file("out/run.h5"));
+  ASSERT_EQ(run.loads.size(), run.frames.size());
+  ASSERT_EQ(run.loads.back().size(), 1u);
+  const std::size_t last = run.frames.size() - 1, first = last - 8;  // 0.4 s
+  const Vec3d force = (run.loads[last][0] - run.loads[first][0]) / (run.frames[last].time - run.frames[first].time);
+  double mass = 0;
+  for (const auto& [name, value] : run.parameters)
+    if (name == "particle_mass") mass = value * static_cast<double>(summary.fluid_end);
+  const double weight = mass * 9.81;
+  test::figure("weight of the water", weight, "N");
+  test::figure("mean force on the tank, vertical", -force.z(), "N");
+  test::figure("mean force on the tank, sideways", std::hypot(force.x(), force.y()), "N");
+  EXPECT_NEAR(-force.z() / weight, 1.0, 0.02);
+  EXPECT_LT(std::hypot(force.x(), force.y()), 0.01 * weight);
+
+  const auto csv = test::run(test::tool("bw-measure") + " loads " + dir.file("out/run.h5") + " --solid tank");
+  ASSERT_EQ(csv.exit_code, 0) << csv.err;
+  EXPECT_EQ(csv.out.rfind("time,fx,fy,fz,ix,iy,iz\n", 0), 0u) << csv.out;
+  EXPECT_EQ(test::line_count(csv.out), static_cast<int>(run.frames.size()) + 1);
+  const auto wrong = test::run(test::tool("bw-measure") + " loads " + dir.file("out/run.h5") + " --solid house");
+  EXPECT_EQ(wrong.exit_code, 2);
+  EXPECT_NE(wrong.err.find("'house'"), std::string::npos) << wrong.err;
+  EXPECT_NE(wrong.err.find("tank"), std::string::npos) << wrong.err;
+}
+
+}  // namespace
+}  // namespace bw
