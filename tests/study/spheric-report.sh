@@ -12,12 +12,20 @@
 # Writes PREFIX.csv (one row per sensor), PREFIX.md (a Markdown table) and PREFIX.png
 # (the four histories with the experiment's rise and peak marked).
 #
-#   spheric-report.sh sensors.csv spheric-test2-pressure.txt PREFIX SPACING
+#   spheric-report.sh sensors.csv spheric-test2-pressure.txt PREFIX SPACING [LABEL=other.csv ...]
+# (other runs' sensors drawn in the plot beside the first, e.g. another density scheme;
+# SPHERIC_LABEL names the first, "breakwater" by default)
 set -euo pipefail
 
 die() { echo "spheric-report: $*" >&2; exit 2; }
-[[ $# -eq 4 ]] || die "usage: spheric-report.sh sensors.csv spheric-test2-pressure.txt PREFIX SPACING"
+[[ $# -ge 4 ]] || die "usage: spheric-report.sh sensors.csv spheric-test2-pressure.txt PREFIX SPACING [LABEL=other.csv ...]"
 sensors=$1 reference=$2 prefix=$3 spacing=$4
+shift 4
+extra=""
+for e in "$@"; do
+  [[ $e == *=* && -s ${e#*=} ]] || die "$e: expected LABEL=sensors.csv of another run"
+  extra+=", \"${e#*=}\" using 1:(column(k+1) / 1000) with lines lw 1 title \"${e%%=*}\""
+done
 [[ -s $sensors ]] || die "$sensors: missing or empty"
 [[ -s $reference ]] || die "$reference: missing or empty"
 
@@ -88,8 +96,8 @@ do for [k=1:4] {
   set xrange [0.3:0.7]
   set yrange [-1:*]
   set key top right
-  plot "$sensors" using 1:(column(k+1) / 1000) with lines lw 1.5 title "breakwater", \
-       "< grep '^P'.k.',' $prefix.exp.tmp" using 2:3 with points pt 7 ps 1.5 lc rgb "black" title "experiment (rise, peak)"
+  plot "$sensors" using 1:(column(k+1) / 1000) with lines lw 1.5 title "${SPHERIC_LABEL:-breakwater}"$extra, \
+       "< grep '^P".k.",' $prefix.exp.tmp" using 2:3 with points pt 7 ps 1.5 lc rgb "black" title "experiment (rise, peak)"
 }
 unset multiplot
 EOF
