@@ -140,6 +140,23 @@ TEST(Checkpoint, ResumedRunIsBitIdenticalWithBodiesAndFracture) {
   expect_same_run(reference, read_run(fx.dir.file("thrice/run.h5")));
 }
 
+// The continuity equation's densities are state, and so are the loads the run file
+// records: both go through a checkpoint, bit for bit.
+TEST(Checkpoint, ContinuityDensitiesAndLoadsResumeBitIdentical) {
+  Fixture fx;
+  fx.scene = scene::load_scene(fx.dir.file("scene.toml"), {"fluid.density=\"continuity\"", "output.loads=true"});
+  fx.run("whole");
+  const RunRecord reference = read_run(fx.dir.file("whole/run.h5"));
+  ASSERT_EQ(reference.loads.size(), reference.frames.size());
+  fx.run("parts", 2);
+  fx.run("parts", -1, true);
+  expect_same_frames(fx.dir.file("whole"), fx.dir.file("parts"), 6);
+  const RunRecord resumed = read_run(fx.dir.file("parts/run.h5"));
+  expect_same_run(reference, resumed);
+  ASSERT_EQ(resumed.loads.size(), reference.loads.size());
+  for (std::size_t f = 0; f < reference.loads.size(); ++f) EXPECT_EQ(resumed.loads[f], reference.loads[f]) << "frame " << f;
+}
+
 // One InputError line containing `what`.
 void expect_refused(const std::function<void()>& f, const std::string& what) {
   try {
