@@ -57,7 +57,8 @@ struct Result {
 
 // A dam break: a column n x n x 2n spacings against the end of a closed tank
 // 4n x n x 3n, spacing 1 cm, h = 2 spacings (~33 neighbours).
-Result run_case(const bw::compute::DeviceInfo& device, int n, bool profile, double simulate_seconds) {
+Result run_case(const bw::compute::DeviceInfo& device, int n, bool profile, double simulate_seconds,
+               const std::string& density) {
   bw::Stopwatch setup;
   bw::test::TempDir dir;
   const double s = 0.01;
@@ -66,7 +67,8 @@ Result run_case(const bw::compute::DeviceInfo& device, int n, bool profile, doub
   std::ofstream(dir.file("dam.toml")) << "spacing = 0.01\n[time]\nend = 10\n[domain]\nmin = [-0.02, -0.02, -0.02]\n"
                                       << "max = [" << L + 0.02 << ", " << W + 0.02 << ", " << H + 0.02 << "]\n"
                                       << "[[fluid.block]]\nmin = [0.01, 0.01, 0.01]\nmax = [" << n * s << ", " << n * s
-                                      << ", " << 2 * n * s << "]\n[[solid]]\nparticles = \"tank.h5\"\n";
+                                      << ", " << 2 * n * s << "]\n[[solid]]\nparticles = \"tank.h5\"\n"
+                                      << "[fluid]\ndensity = \"" << density << "\"\n";
   const bw::scene::Scene scene = bw::scene::load_scene(dir.file("dam.toml"));
   bw::sim::RunOptions options;
   options.output = dir.file("out");
@@ -162,11 +164,13 @@ int main(int argc, char** argv) {
   bw::cli::setup(app,
                  "  bench-sim\n"
                  "  bench-sim --quick\n"
-                 "  bench-sim --device gpu --sizes 30000,120000,1000000,4000000 --csv sim.csv\n");
+                 "  bench-sim --device gpu --sizes 30000,120000,1000000,4000000 --csv sim.csv\n"
+                 "  bench-sim --sizes 120000 --density continuity\n");
   bool quick = false;
   std::string device_choice = "auto", csv;
   std::vector<double> counts;
   double profile_near = 120000, simulate = 0.25;
+  std::string density = "summation";
   auto* quick_flag = app.add_flag("--quick", quick, "The 30 k case only");
   app.add_option("--sizes", counts, "Fluid particle counts to run, about (default 30000,120000,500000)")
       ->delimiter(',')
@@ -183,11 +187,17 @@ int main(int argc, char** argv) {
                  "Simulated seconds of the smallest case, for wall time per simulated second (0: none)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--density", density,
+                 "fluid.density of the runs: summation, or continuity (with its density diffusion; the "
+                 "profile's fluid_density row is then what the continuity equation and the diffusion cost)")
+      ->check(CLI::IsMember({"summation", "continuity"}))
+      ->capture_default_str();
   return bw::cli::run(app, argc, argv, [&]() -> int {
     const bw::compute::DeviceInfo device = bw::compute::choose_device(device_choice);
     std::printf("bench-sim: %s, %d compute units, vector width %d; load average %s\n", device.label().c_str(),
                 device.compute_units, bw::compute::kernel_vector_width(device), load_average().c_str());
-    std::printf("dam break, spacing 1 cm, h = 2 spacings; rounds of 8 steps after 5 warm-up steps\n\n");
+    std::printf("dam break, spacing 1 cm, h = 2 spacings, %s density; rounds of 8 steps after 5 warm-up steps\n\n",
+                density.c_str());
     std::vector<int> sizes = {25, 39, 63};
     if (quick) sizes = {25};
     if (!counts.empty()) {
@@ -204,7 +214,7 @@ int main(int argc, char** argv) {
     std::vector<Result> results;
     for (int n : sizes) {
       std::printf("column %d x %d x %d:\n", n, n, 2 * n);
-      const Result r = run_case(device, n, n == profiled, n == smallest ? simulate : 0.0);
+      const Result r = run_case(device, n, n == profiled, n == smallest ? simulate : 0.0, density);
       std::printf("  %lld fluid + %lld boundary particles (set up in %.1f s)\n", static_cast<long long>(r.fluid),
                   static_cast<long long>(r.boundary), r.setup_seconds);
       std::printf("  particle-steps/s: best %s, median %s", bw::human_count(r.best).c_str(),
