@@ -7,18 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "io/frame_range.h"
+
 namespace bw::exporter {
 
-// Frames first..last (inclusive) every step. An open end takes the first or last
-// frame present in the folder.
-struct FrameRange {
-  std::optional<int> first;
-  std::optional<int> last;
-  int step = 1;
-};
-
-// "A:B", "A:B:S", "A:", ":B", "A" (that frame alone), "::S". Throws InputError.
-FrameRange parse_frame_range(const std::string& text);
+// --frames (io/frame_range.h, shared with bw-render).
+using bw::FrameRange;
+using bw::parse_frame_range;
 
 // Frame files of a folder by number: NNNNNN.h5 (digits only). Throws InputError when
 // the folder does not exist or holds none.

@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -12,6 +11,7 @@
 #include "common/error.h"
 #include "common/terminal.h"
 #include "io/frame_file.h"
+#include "io/frame_range.h"
 #include "io/h5.h"
 #include "render/camera.h"
 #include "render/gl_context.h"
@@ -37,14 +37,6 @@ constexpr int kReferenceScan = 32;
 // spacing: a centimetre suits the metre-sized example scenes.
 constexpr double kFallbackRadius = 0.01;
 
-std::optional<int> parse_int(std::string_view s) {
-  int v = 0;
-  if (s.empty()) return std::nullopt;
-  auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (ec != std::errc() || end != s.data() + s.size()) return std::nullopt;
-  return v;
-}
-
 std::vector<double> parse_numbers(std::string_view s, const std::string& whole) {
   std::vector<double> out;
   std::size_t start = 0;
@@ -62,54 +54,7 @@ std::vector<double> parse_numbers(std::string_view s, const std::string& whole) 
   return out;
 }
 
-// Frame files of a folder by number: NNNNNN.h5 (digits only).
-std::map<int, std::string> list_frames(const std::string& dir) {
-  std::map<int, std::string> frames;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    const std::string name = entry.path().filename().string();
-    if (name.size() < 4 || name.substr(name.size() - 3) != ".h5") continue;
-    const std::string stem = name.substr(0, name.size() - 3);
-    if (!std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; })) continue;
-    if (auto n = parse_int(stem)) frames[*n] = entry.path().string();
-  }
-  return frames;
-}
-
 }  // namespace
-
-FrameRange parse_frame_range(const std::string& text) {
-  FrameRange r;
-  const auto bad = [&](const char* why) { fail_input("--frames '{}': {}", text, why); };
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t colon = text.find(':', start);
-    parts.push_back(text.substr(start, colon == std::string::npos ? std::string::npos : colon - start));
-    if (colon == std::string::npos) break;
-    start = colon + 1;
-  }
-  if (parts.size() > 3) bad("expected A:B or A:B:S");
-  auto number = [&](const std::string& s) -> std::optional<int> {
-    if (s.empty()) return std::nullopt;
-    auto v = parse_int(s);
-    if (!v || *v < 0) bad("frame numbers are integers >= 0");
-    return v;
-  };
-  r.first = number(parts[0]);
-  if (parts.size() == 1) {
-    if (!r.first) bad("expected A:B or A:B:S");
-    r.last = r.first;
-    return r;
-  }
-  r.last = number(parts[1]);
-  if (parts.size() == 3) {
-    auto s = number(parts[2]);
-    if (!s || *s < 1) bad("the step must be an integer >= 1");
-    r.step = *s;
-  }
-  if (r.first && r.last && *r.first > *r.last) bad("the range is empty (first > last)");
-  return r;
-}
 
 Camera parse_camera(const std::string& text) {
   Camera c;
@@ -141,7 +86,7 @@ SequencePlan plan_sequence(const SequenceJob& job) {
   SequencePlan plan;
   std::error_code ec;
   if (!fs::is_directory(job.frames_dir, ec)) fail_input("{}: no such folder of frames", job.frames_dir);
-  const std::map<int, std::string> frames = list_frames(job.frames_dir);
+  const std::map<int, std::string> frames = frame_files(job.frames_dir);
   if (frames.empty()) fail_input("{}: holds no frame files (NNNNNN.h5)", job.frames_dir);
   for (const auto& [number, path] : frames) {
     if (static_cast<int>(plan.reference_frames.size()) == kReferenceScan) break;

@@ -8,20 +8,14 @@
 #include <string>
 #include <vector>
 
+#include "io/frame_range.h"
 #include "render/render_settings.h"
 
 namespace bw::render {
 
-// Frames first..last (inclusive) every step. An open end takes the last frame
-// present in the folder.
-struct FrameRange {
-  std::optional<int> first;
-  std::optional<int> last;
-  int step = 1;
-};
-
-// "A:B", "A:B:S", "A:", ":B", "A" (that frame alone), "::S". Throws InputError.
-FrameRange parse_frame_range(const std::string& text);
+// --frames (io/frame_range.h, shared with bw-export).
+using bw::FrameRange;
+using bw::parse_frame_range;
 
 // "PX,PY,PZ:TX,TY,TZ[:FOV]": position, target and the vertical field of view in
 // degrees (45 when left out); up is +z. Throws InputError.
