@@ -112,25 +112,13 @@ SolidSet SolidSet::load(const std::string& run_path, const std::string& fragment
   SolidSet set;
   set.run_path = run_path;
   set.run = read_run(run_path);
-  std::map<std::string, SampledSolid> files;
+  std::vector<TriMesh> meshes = reference_meshes(set.run, run_path);
   for (std::size_t s = 0; s < set.run.solids.size(); ++s) {
     const SolidRecord& r = set.run.solids[s];
-    auto it = files.find(r.particles);
-    if (it == files.end()) {
-      try {
-        it = files.emplace(r.particles, read_particles(r.particles)).first;
-      } catch (const Error& e) {
-        fail_input("{}: solid {} ('{}'): {}", run_path, s, r.name, e.what());
-      }
-    }
     if (r.body >= static_cast<std::int32_t>(set.run.bodies.size()))
       fail_input("{}: solid {} ('{}') names body {}, the run has {} bodies", run_path, s, r.name, r.body,
                  set.run.bodies.size());
-    TriMesh mesh;
-    mesh.triangles = it->second.mesh.triangles;
-    const Mat3d rot = r.rotation.normalized().toRotationMatrix();
-    for (const Vec3d& v : it->second.mesh.vertices) mesh.vertices.push_back(r.translation + rot * (r.scale * v));
-    set.solid_meshes.push_back(std::move(mesh));
+    set.solid_meshes.push_back(std::move(meshes[s]));
   }
   if (!fragments_path.empty()) {
     set.fragments = read_fragments(fragments_path);

@@ -1,9 +1,12 @@
 #include "io/run_file.h"
 
+#include <map>
+
 #include <fmt/format.h>
 
 #include "common/error.h"
 #include "io/h5.h"
+#include "io/particles_file.h"
 
 namespace bw {
 namespace {
@@ -312,6 +315,29 @@ RunRecord read_run(const std::string& path) {
     }
   }
   return run;
+}
+
+std::vector<TriMesh> reference_meshes(const RunRecord& run, const std::string& run_path) {
+  std::map<std::string, SampledSolid> files;
+  std::vector<TriMesh> out;
+  for (std::size_t s = 0; s < run.solids.size(); ++s) {
+    const SolidRecord& r = run.solids[s];
+    auto it = files.find(r.particles);
+    if (it == files.end()) {
+      try {
+        it = files.emplace(r.particles, read_particles(r.particles)).first;
+      } catch (const Error& e) {
+        fail_input("{}: solid {} ('{}'): {}", run_path, s, r.name, e.what());
+      }
+    }
+    TriMesh mesh;
+    mesh.triangles = it->second.mesh.triangles;
+    mesh.vertices.reserve(it->second.mesh.vertices.size());
+    const Mat3d rot = r.rotation.normalized().toRotationMatrix();
+    for (const Vec3d& v : it->second.mesh.vertices) mesh.vertices.push_back(r.translation + rot * (r.scale * v));
+    out.push_back(std::move(mesh));
+  }
+  return out;
 }
 
 }  // namespace bw

@@ -81,6 +81,11 @@ struct RunRecord {
   std::vector<std::vector<Vec3d>> loads;
 };
 
+// Every solid's mesh in its reference configuration, x_ref = t + R (s x_mesh), from
+// its particle file (each file read once), in /solids order. Throws InputError naming
+// the run file and the solid when a particle file cannot be read.
+std::vector<TriMesh> reference_meshes(const RunRecord& run, const std::string& run_path);
+
 // Writes the whole record through a temporary file (called after every frame).
 void write_run(const RunRecord& run, const std::string& path);
 RunRecord read_run(const std::string& path);

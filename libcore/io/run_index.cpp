@@ -259,22 +259,7 @@ MeshesReport write_run_meshes(const std::string& run_path, const std::string& fr
   const RunRecord run = read_run(run_path);
 
   // Every solid's mesh in its reference configuration (x_ref = t + R (s x_mesh)).
-  std::vector<TriMesh> solid_mesh(run.solids.size());
-  std::map<std::string, SampledSolid> files;
-  for (std::size_t s = 0; s < run.solids.size(); ++s) {
-    const SolidRecord& r = run.solids[s];
-    auto it = files.find(r.particles);
-    if (it == files.end()) {
-      try {
-        it = files.emplace(r.particles, read_particles(r.particles)).first;
-      } catch (const Error& e) {
-        fail_input("{}: solid {} ('{}'): {}", run_path, s, r.name, e.what());
-      }
-    }
-    const Mat3d rot = r.rotation.normalized().toRotationMatrix();
-    solid_mesh[s].triangles = it->second.mesh.triangles;
-    for (const Vec3d& v : it->second.mesh.vertices) solid_mesh[s].vertices.push_back(r.translation + rot * (r.scale * v));
-  }
+  const std::vector<TriMesh> solid_mesh = reference_meshes(run, run_path);
   // Body -> its meshes: its fragment(s) when there are, else its own solid's mesh.
   std::map<std::int32_t, std::vector<const TriMesh*>> body_meshes;
   FragmentSet fragments;

@@ -51,22 +51,11 @@ SolidScene SolidScene::load(const SolidSources& sources, const SolidColors& colo
   scene.colors_ = colors;
   if (!sources.run_path.empty()) {
     const RunRecord run = read_run(sources.run_path);
-    std::map<std::string, SampledSolid> files;
+    std::vector<TriMesh> meshes = reference_meshes(run, sources.run_path);
     for (std::size_t s = 0; s < run.solids.size(); ++s) {
       const SolidRecord& r = run.solids[s];
-      auto it = files.find(r.particles);
-      if (it == files.end()) {
-        try {
-          it = files.emplace(r.particles, read_particles(r.particles)).first;
-        } catch (const Error& e) {
-          fail_input("{}: solid {} ('{}'): {}", sources.run_path, s, r.name, e.what());
-        }
-      }
       Part part;
-      part.mesh.triangles = it->second.mesh.triangles;
-      part.mesh.vertices.reserve(it->second.mesh.vertices.size());
-      const Mat3d rot = r.rotation.normalized().toRotationMatrix();
-      for (const Vec3d& v : it->second.mesh.vertices) part.mesh.vertices.push_back(r.translation + rot * (r.scale * v));
+      part.mesh = std::move(meshes[s]);
       part.body = r.body;
       part.is_static = r.body < 0;
       if (r.body >= static_cast<std::int32_t>(run.bodies.size()))
