@@ -18,7 +18,7 @@ struct ClassifyParams {
   double spacing = 0;          // particle spacing (m), > 0
   double radius_spacings = 2;  // neighbours are counted within this many spacings
   int spray_neighbours = 3;    // at most this many: spray
-  int foam_neighbours = 10;    // at most this many (and more than spray): foam
+  int foam_neighbours = 8;     // at most this many (and more than spray): foam
 };
 
 // Neighbours of each particle within radius_spacings * spacing (itself not counted),

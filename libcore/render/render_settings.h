@@ -75,10 +75,10 @@ struct RenderSettings {
   // (0: no tint, 1: white where a particle's depth of foam is on the ray).
   bool spray = true;
   int spray_neighbours = 3;
-  int foam_neighbours = 10;
+  int foam_neighbours = 8;
   double spray_size = 0.5;
   double spray_opacity = 0.85;
-  double foam = 0.6;
+  double foam = 0.3;
 
   // Sky (background and what water reflects): colour at the zenith and the horizon.
   Vec3d sky_color = Vec3d(0.06, 0.18, 0.48);

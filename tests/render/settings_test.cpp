@@ -358,7 +358,7 @@ std::vector<br::ParticleClass> classes_of(const bw::FrameData& f, double spacing
 }  // namespace
 
 // The grid finds exactly the neighbours a search over all pairs finds.
-TEST(ParticleClasses, NeighbourCountsMatchAllPairs) {
+TEST(RenderSpray, NeighbourCountsMatchAllPairs) {
   bw::FrameData f;
   std::mt19937 rng(4);
   std::uniform_real_distribution<float> u(-0.3f, 0.3f);
@@ -379,7 +379,7 @@ TEST(ParticleClasses, NeighbourCountsMatchAllPairs) {
 
 // A block's interior is water, a lone particle and a pair are spray, a sheet one
 // particle thick and a jet two particles across are not spray.
-TEST(ParticleClasses, BlockSheetJetAndDrops) {
+TEST(RenderSpray, BlockSheetJetAndDrops) {
   const double h = 0.02;
   bw::FrameData block;
   add_lattice(block, 12, 12, 12, h, 0.1, 1);
@@ -426,7 +426,7 @@ TEST(RenderSettings, SprayKeys) {
   const auto d = br::parse_render_settings("", "s.toml");
   EXPECT_TRUE(d.spray);
   EXPECT_EQ(d.spray_neighbours, 3);
-  EXPECT_EQ(d.foam_neighbours, 10);
+  EXPECT_EQ(d.foam_neighbours, 8);
   const auto s = br::parse_render_settings(
       "[render]\nspray = false\nspray_neighbours = 2\nfoam_neighbours = 6\nspray_size = 0.4\n"
       "spray_opacity = 0.5\nfoam = 0\n",
