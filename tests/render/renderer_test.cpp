@@ -377,3 +377,29 @@ TEST(Renderer, IsolatedParticlesAreDrawnAsWhiteSpray) {
   EXPECT_GT(spray.brightness, bubbles.brightness + 15);
   EXPECT_GT(spray.peak, 200);  // white at the centre (a bubble's glint may be as bright)
 }
+
+// A sheet one particle thick and a jet two particles across stay water: their
+// pixels of the water's surface are the same with spray on as with it off.
+TEST(Renderer, ThinSheetsAndJetsStayWaterWithSpray) {
+  const double spacing = 0.03;
+  bw::FrameData thin;
+  // A sheet (one particle thick) and a jet (2 x 2 particles across).
+  br::test::add_block(thin, Vec3d(-0.4, 0, 0.3), Vec3d(0.4, 0.5 * spacing, 0.9), spacing, 0.1, 11);
+  br::test::add_block(thin, Vec3d(-0.5, -0.3, 0.1), Vec3d(0.5, -0.3 + 1.5 * spacing, 0.1 + 1.5 * spacing), spacing, 0.1,
+                      12);
+  br::Camera camera;
+  camera.position = Vec3d(0.6, -2.2, 1.0);
+  camera.target = Vec3d(0, 0, 0.5);
+  int fluid[2] = {0, 0};
+  for (bool spray : {false, true}) {
+    br::RenderSettings s = small_settings();
+    s.spray = spray;
+    br::Renderer renderer(context(), s);
+    renderer.render(input_of(thin, camera, spacing));
+    for (float d : renderer.read_fluid_layers().depth) fluid[spray] += d > 0;
+  }
+  bw::test::figure("surface pixels of the sheet and jet, spray off", fluid[0]);
+  bw::test::figure("surface pixels of the sheet and jet, spray on", fluid[1]);
+  ASSERT_GT(fluid[0], 1000);
+  EXPECT_GE(fluid[1], 0.99 * fluid[0]);
+}
