@@ -17,9 +17,9 @@ void main() {
   if (d > eye_distance(texelFetch(t_scene_depth, p, 0).r)) discard;
   float water = texelFetch(t_fluid_depth, p, 0).r;
   if (is_fluid(water) && d > water) discard;
-  // Point coordinates with y up, over the disc of the sprite's own radius (a
-  // sprite widened to 2 pixels keeps its soft edge at that radius).
-  vec2 q = (gl_PointCoord * 2.0 - 1.0) * vec2(1.0, -1.0) * (0.5 * v_size / max(v_radius_px + 0.5, 0.5));
+  // Offset from the centre with y up, in units of a disc half a pixel wider than
+  // the drop, so that the smallest drops still cover a pixel centre.
+  vec2 q = (gl_PointCoord * 2.0 - 1.0) * vec2(1.0, -1.0) * (0.5 * v_size / (v_radius_px + 0.5));
   float r2 = dot(q, q);
   if (r2 >= 1.0) discard;
   vec3 n_view = vec3(q, sqrt(1.0 - r2));
