@@ -20,6 +20,7 @@ layout(std140, binding = 0) uniform Frame {
   vec4 u_filter;           // world radius (m), max radius (pixels), range threshold (m), clamp (m)
   vec4 u_misc;             // guard band (pixels), largest point size, water shadow point size, its radius (m)
   vec4 u_shadow;           // water front bias (light depth units), unused x 3
+  vec4 u_spray;            // foam strength, foam depth that saturates (m), spray radius (m), spray opacity
 };
 
 // Eye distance stored where a pixel shows no fluid (cleared to it; depth is blended

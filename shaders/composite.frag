@@ -23,7 +23,8 @@ void main() {
   vec3 scene = texelFetch(t_scene_color, p, 0).rgb;
   float scene_d = eye_distance(texelFetch(t_scene_depth, p, 0).r);
   float d = texelFetch(t_fluid_depth, p, 0).r;
-  float thickness = texelFetch(t_thickness, p, 0).r;
+  vec2 thickness_foam = texelFetch(t_thickness, p, 0).rg;
+  float thickness = thickness_foam.x;
   vec3 n = texelFetch(t_normals, p, 0).xyz;
   int mode = int(u_camera_position.w + 0.5);
   bool water = is_fluid(d) && d < scene_d && dot(n, n) > 0.5;
@@ -73,6 +74,12 @@ void main() {
     float glint = pow(max(dot(n, h), 0.0), 600.0) * 6.0 + pow(max(dot(n, h), 0.0), 60.0) * 0.25;
     vec3 specular = u_absorption.w * glint * sun_light;
     color = mix(refracted, reflected, fresnel) + specular;
+    // Foam on edges and thin sheets: white and diffuse (lit like a rough surface),
+    // over the water in proportion to the foam on the ray.
+    float foam = u_spray.x * (1.0 - exp(-thickness_foam.y / max(u_spray.y, 1e-9)));
+    vec3 foam_lit = vec3(0.9) * (u_light_color.w * (0.6 + 0.4 * world_n.z) +
+                                 sun_light * (0.35 + 0.65 * max(dot(world_n, to_sun), 0.0)));
+    color = mix(color, foam_lit, foam);
   }
   o_color = vec4(encode_srgb(tone(color)), 1.0);
 }

@@ -7,6 +7,8 @@ bw_embed_files(TARGET bw_render_shaders NAMESPACE bw::render::shaders FILES
   ${CMAKE_CURRENT_LIST_DIR}/fullscreen.vert
   ${CMAKE_CURRENT_LIST_DIR}/sprite.vert
   ${CMAKE_CURRENT_LIST_DIR}/sprite_fluid.frag
+  ${CMAKE_CURRENT_LIST_DIR}/sprite_spray.vert
+  ${CMAKE_CURRENT_LIST_DIR}/sprite_spray.frag
   ${CMAKE_CURRENT_LIST_DIR}/sprite_shadow.vert
   ${CMAKE_CURRENT_LIST_DIR}/sprite_shadow.frag
   ${CMAKE_CURRENT_LIST_DIR}/mesh.vert

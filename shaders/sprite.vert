@@ -2,8 +2,11 @@
 // A particle as a point sprite large enough to cover its sphere's silhouette, from
 // the positions in a storage buffer (one vertex per particle, gl_VertexID).
 layout(std430, binding = 1) readonly buffer Particles { float p_position[]; };
+// 1 for a foam particle (render/particle_classes.h), 0 for water.
+layout(std430, binding = 2) readonly buffer Foam { float p_foam[]; };
 
 flat out vec3 v_center;   // sphere centre, view space
+flat out float v_foam;
 
 void main() {
   int i = gl_VertexID;
@@ -12,6 +15,7 @@ void main() {
   float r = u_camera.w;
   float dist = length(c);
   v_center = c;
+  v_foam = p_foam[i];
   gl_Position = u_proj * vec4(c, 1.0);
   // The fluid mask takes the sprite's constant depth (window depth 0.0005, in front
   // of the full-screen passes' 0.5); the sphere's own depth goes to the colour target.

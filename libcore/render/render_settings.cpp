@@ -148,6 +148,13 @@ void RenderSettings::validate(const std::string& where) const {
   check(filter_radius > 0, where, "render.filter_radius", "must be > 0");
   check(filter_max_pixels >= 1 && filter_max_pixels <= 64, where, "render.filter_max_pixels",
         fmt::format("{} is outside [1, 64]", filter_max_pixels));
+  check(spray_neighbours >= 0 && spray_neighbours <= 1000, where, "render.spray_neighbours",
+        fmt::format("{} is outside [0, 1000]", spray_neighbours));
+  check(foam_neighbours >= spray_neighbours && foam_neighbours <= 1000, where, "render.foam_neighbours",
+        fmt::format("{} is outside [render.spray_neighbours = {}, 1000]", foam_neighbours, spray_neighbours));
+  check(spray_size > 0, where, "render.spray_size", "must be > 0");
+  check(spray_opacity >= 0 && spray_opacity <= 1, where, "render.spray_opacity", "must lie in [0, 1]");
+  check(foam >= 0 && foam <= 1, where, "render.foam", "must lie in [0, 1]");
   check(unit_color(sky_color), where, "render.sky_color", "components must lie in [0, 1]");
   check(unit_color(horizon_color), where, "render.horizon_color", "components must lie in [0, 1]");
   check(ground_tile > 0, where, "render.ground_tile", "must be > 0");
@@ -213,6 +220,12 @@ RenderSettings parse_render_settings(const std::string& toml_text, const std::st
     });
     r.number("filter_radius", s.filter_radius);
     r.integer("filter_max_pixels", s.filter_max_pixels);
+    r.boolean("spray", s.spray);
+    r.integer("spray_neighbours", s.spray_neighbours);
+    r.integer("foam_neighbours", s.foam_neighbours);
+    r.number("spray_size", s.spray_size);
+    r.number("spray_opacity", s.spray_opacity);
+    r.number("foam", s.foam);
     r.vec3("sky_color", s.sky_color);
     r.vec3("horizon_color", s.horizon_color);
     r.boolean("ground", s.ground);

@@ -68,6 +68,18 @@ struct RenderSettings {
   double filter_radius = 6.0;      // world-space kernel radius in particle radii
   int filter_max_pixels = 24;      // cap on the kernel radius on screen
 
+  // Spray and foam (render/particle_classes.h): a particle with at most
+  // spray_neighbours others within two spacings is spray, drawn as a soft white
+  // sprite of spray_size spacings' radius at spray_opacity, and left out of the
+  // water's surface; one with at most foam_neighbours is water tinted white by foam
+  // (0: no tint, 1: white where a particle's depth of foam is on the ray).
+  bool spray = true;
+  int spray_neighbours = 3;
+  int foam_neighbours = 8;
+  double spray_size = 0.5;
+  double spray_opacity = 0.85;
+  double foam = 0.3;
+
   // Sky (background and what water reflects): colour at the zenith and the horizon.
   Vec3d sky_color = Vec3d(0.06, 0.18, 0.48);
   Vec3d horizon_color = Vec3d(0.5, 0.64, 0.8);

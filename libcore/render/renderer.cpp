@@ -13,6 +13,7 @@
 #include "common/error.h"
 #include "render/camera.h"
 #include "render/gl_api.h"
+#include "render/particle_classes.h"
 
 namespace bw::render {
 namespace {
@@ -54,9 +55,9 @@ struct FrameUniforms {
   float view[16], proj[16], inv_view[16], light_view[16], light_proj[16];
   float viewport[4], camera[4], light_dir[4], light_color[4], sky_color[4], horizon_color[4];
   float ground_color[4], ground[4], fluid_color[4], absorption[4], camera_position[4], filter[4], misc[4];
-  float shadow[4];
+  float shadow[4], spray[4];
 };
-static_assert(sizeof(FrameUniforms) == (5 * 16 + 14 * 4) * sizeof(float), "std140 layout");
+static_assert(sizeof(FrameUniforms) == (5 * 16 + 15 * 4) * sizeof(float), "std140 layout");
 
 void put(float* out, const Mat4d& m) {
   for (int c = 0; c < 4; ++c)
@@ -235,7 +236,7 @@ struct Renderer::Impl {
   float max_point_size = 64;
 
   Program sky, mesh, mesh_shadow, sprite_fluid, sprite_shadow, filter_narrow, filter_narrow_2d, filter_bilateral,
-      blur_thickness, blur_shadow, normals, composite_scene, composite;
+      blur_thickness, blur_shadow, normals, composite_scene, composite, sprite_spray;
 
   Texture scene_color, scene_depth, fluid_depth, fluid_mask, thickness, thickness_blur, filtered[2], normal_map,
       final_color;
@@ -244,7 +245,7 @@ struct Renderer::Impl {
       shadow_fluid_fb, shadow_blur_fb[2];
   GLuint smoothed = 0;  // the texture holding the smoothed depth after the last render
 
-  Buffer uniforms, particles, solid_vertices, ground_vertices;
+  Buffer uniforms, particles, foam, solid_vertices, ground_vertices;
   GLuint vao_empty = 0, vao_mesh = 0, vao_ground = 0;
 
   bool profiling = false;
@@ -287,6 +288,7 @@ void Renderer::Impl::build() {
   normals = Program("fullscreen.vert", "normals.frag");
   composite_scene = Program("fullscreen.vert", "composite_scene.frag");
   composite = Program("fullscreen.vert", "composite.frag");
+  sprite_spray = Program("sprite_spray.vert", "sprite_spray.frag");
   sky.set("u_z", 1.0f);
 
   const int w = full_width, h = full_height;
@@ -294,8 +296,9 @@ void Renderer::Impl::build() {
   scene_depth = Texture(GL_DEPTH_COMPONENT32F, w, h, false);
   fluid_depth = Texture(GL_R32F, w, h, false);
   fluid_mask = Texture(GL_DEPTH_COMPONENT32F, w, h, false);
-  thickness = Texture(GL_R32F, w, h, false);
-  thickness_blur = Texture(GL_R32F, w, h, false);
+  // Thickness of the water and (second channel) of its foam.
+  thickness = Texture(GL_RG32F, w, h, false);
+  thickness_blur = Texture(GL_RG32F, w, h, false);
   filtered[0] = Texture(GL_R32F, w, h, false);
   filtered[1] = Texture(GL_R32F, w, h, false);
   normal_map = Texture(GL_RGBA16F, w, h, false);
@@ -370,20 +373,42 @@ Image Renderer::render(const RenderInput& in) {
 
   // ---- geometry of this frame: particles, solids, ground, bounds
   // Particles with a non-finite coordinate (a simulation that blew up) are left out.
-  std::vector<float> positions;
+  // With spray on, each is water, foam or spray by its neighbours in this frame;
+  // the buffer holds the water and foam in their order, then the spray in theirs.
+  const double spacing =
+      in.particle_spacing > 0 ? in.particle_spacing : in.particle_radius / s.particle_radius_factor;
+  std::vector<ParticleClass> classes;
+  if (s.spray) {
+    ClassifyParams params;
+    params.spacing = spacing;
+    params.spray_neighbours = s.spray_neighbours;
+    params.foam_neighbours = s.foam_neighbours;
+    classes = classify_particles(in.x, in.y, in.z, in.count, params);
+  }
+  std::vector<float> positions, spray_positions, foam_flags;
   positions.reserve(3 * in.count);
+  foam_flags.reserve(in.count);
   Aabb content;
   for (std::size_t i = 0; i < in.count; ++i) {
     if (!std::isfinite(in.x[i]) || !std::isfinite(in.y[i]) || !std::isfinite(in.z[i])) continue;
-    positions.insert(positions.end(), {in.x[i], in.y[i], in.z[i]});
+    const ParticleClass c = classes.empty() ? ParticleClass::kWater : classes[i];
+    if (c == ParticleClass::kSpray) {
+      spray_positions.insert(spray_positions.end(), {in.x[i], in.y[i], in.z[i]});
+    } else {
+      positions.insert(positions.end(), {in.x[i], in.y[i], in.z[i]});
+      foam_flags.push_back(c == ParticleClass::kFoam ? 1.0f : 0.0f);
+    }
     content.add(Vec3d(in.x[i], in.y[i], in.z[i]));
   }
-  const std::size_t count = positions.size() / 3;
+  const std::size_t count = positions.size() / 3;  // water and foam
+  const std::size_t spray_count = spray_positions.size() / 3;
+  positions.insert(positions.end(), spray_positions.begin(), spray_positions.end());
   if (!content.empty()) {
     content.min.array() -= in.particle_radius;
     content.max.array() += in.particle_radius;
   }
   r.particles.upload(positions.data(), positions.size() * sizeof(float));
+  r.foam.upload(foam_flags.data(), foam_flags.size() * sizeof(float));
   std::size_t solid_vertex_count = 0;
   if (in.solids && !in.solids->vertices.empty()) {
     r.solid_vertices.upload(in.solids->vertices.data(), in.solids->vertices.size() * sizeof(float));
@@ -507,9 +532,11 @@ Image Renderer::render(const RenderInput& in) {
       std::min<double>(shadow_radius * kFluidShadowSize / half_side, r.max_point_size), shadow_radius);
   // Two shadow-sphere diameters, in the light's depth units.
   put(u.shadow, 4 * shadow_radius / (light_far - light_near), 0, 0, 0);
+  put(u.spray, s.foam, spacing, s.spray_size * spacing, s.spray_opacity);
   r.uniforms.upload(&u, sizeof u);
   gl::BindBufferBase(GL_UNIFORM_BUFFER, 0, r.uniforms.id);
   gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, r.particles.id);
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, r.foam.id);
 
   const GLsizei sprite_vertices = static_cast<GLsizei>(count);
   const float zero[4] = {0, 0, 0, 0};
@@ -678,8 +705,24 @@ Image Renderer::render(const RenderInput& in) {
   gl::BindTextureUnit(3, r.thickness.id);
   gl::BindTextureUnit(7, r.normal_map.id);
   gl::DrawArrays(GL_TRIANGLES, 0, 3);
-  check_gl("render");
   r.lap("composite");
+
+  // ---- 6. spray over the image, in the shaded view only
+  if (spray_count > 0 && s.view == View::kShaded) {
+    gl::Disable(GL_DEPTH_TEST);
+    gl::Enable(GL_BLEND);
+    gl::BlendEquation(GL_FUNC_ADD);
+    gl::BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    r.sprite_spray.use();
+    r.sprite_spray.set("u_first", static_cast<int>(count));
+    gl::BindTextureUnit(1, r.scene_depth.id);
+    gl::BindTextureUnit(2, r.smoothed);
+    gl::BindVertexArray(r.vao_empty);
+    gl::DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(spray_count));
+    gl::Disable(GL_BLEND);
+  }
+  check_gl("render");
+  r.lap("spray");
 
   // ---- read back, top row first
   std::vector<std::uint8_t> rgba(4 * static_cast<std::size_t>(w) * h);

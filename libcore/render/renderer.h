@@ -3,16 +3,20 @@
 //      nearest surface (a strided subset of the particles carrying the same volume,
 //      blurred), so that water casts tinted, partial shadows;
 //   1. scene: ground plane and solid meshes, lit and shadowed, then the sky;
-//   2. fluid depth and thickness in one pass of point sprites: per pixel the ray
-//      meets the particle's sphere; the nearest front wins (MIN blending) and the
-//      chords add up (ADD blending), cut where a solid stands; the pass also marks
+//   2. fluid depth and thickness (and the foam particles' share of it) in one pass
+//      of point sprites: per pixel the ray meets the particle's sphere; the nearest
+//      front wins (MIN blending) and the chords add up (ADD blending), cut where a solid stands; the pass also marks
 //      a fluid mask so that the passes below only run on fluid pixels;
 //   3. depth smoothing: the narrow-range filter (Truong and Yuksel 2018), a
 //      bilateral filter, or none; the thickness is blurred over a particle diameter;
 //      view-space normals from depth differences;
 //   4. composite: Fresnel reflection of the sky, refraction through the thickness
 //      with Beer-Lambert absorption, light scattered in the water, a specular glint,
-//      over the scene; tone shoulder and sRGB encoding.
+//      over the scene, whitened where foam is on the ray; tone shoulder and sRGB
+//      encoding;
+//   5. spray: particles with few neighbours (render/particle_classes.h), left out
+//      of passes 0 to 4, drawn over the image as small, soft, diffusely lit white
+//      sprites, hidden behind the solids and the smoothed water surface.
 // Every layer has a guard band around the image; the image is read back with
 // glReadPixels. The same input gives the same bytes on the same driver.
 #pragma once

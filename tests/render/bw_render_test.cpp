@@ -2,6 +2,8 @@
 // and every bad input with its exit code and one-line message.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -97,6 +99,33 @@ TEST(BwRender, RangesRenderedApartMatchOneRun) {
   ASSERT_EQ(run(kTool + " " + dir.file("frames") + " -o " + dir.file("all") + kSmall).exit_code, 0);
   ASSERT_EQ(run(kTool + " " + dir.file("frames") + " -o " + dir.file("part") + " --frames 2:" + kSmall).exit_code, 0);
   EXPECT_EQ(slurp(dir.file("all/000002.png")), slurp(dir.file("part/000002.png")));
+}
+
+// Spray is classified per frame with the reference frame's spacing: a sequence of
+// a ball shedding drops rendered in parts matches one run; --spray off draws the
+// drops as water, which changes the image.
+TEST(BwRender, SprayRangesRenderedApartMatchOneRun) {
+  bw::test::TempDir dir;
+  br::test::write_wall_run(dir.path());
+  std::filesystem::create_directories(dir.file("frames"));
+  for (int n : {0, 1, 2}) {
+    bw::FrameData f;
+    f.frame = n;
+    f.time = n / 30.0;
+    br::test::add_ball(f, Vec3d(0, 0, 0.6), 0.2, 0.04, 0.1, 7);
+    for (int k = 0; k < 12; ++k) {  // drops around the ball, farther out each frame
+      const double a = 0.5236 * k, r = 0.3 + 0.05 * n;
+      f.x.push_back(float(r * std::cos(a))), f.y.push_back(-0.1f), f.z.push_back(float(0.6 + r * std::sin(a)));
+    }
+    bw::write_frame(f, bw::frame_file_name(dir.file("frames"), n));
+  }
+  ASSERT_EQ(run(kTool + " " + dir.file("frames") + " -o " + dir.file("all") + kSmall).exit_code, 0);
+  ASSERT_EQ(run(kTool + " " + dir.file("frames") + " -o " + dir.file("part") + " --frames 2:" + kSmall).exit_code, 0);
+  ASSERT_EQ(run(kTool + " " + dir.file("frames") + " -o " + dir.file("off") + " --frames 2 --spray off" + kSmall)
+                .exit_code,
+            0);
+  EXPECT_EQ(slurp(dir.file("all/000002.png")), slurp(dir.file("part/000002.png")));
+  EXPECT_NE(slurp(dir.file("all/000002.png")), slurp(dir.file("off/000002.png")));
 }
 
 // A scene with emitters starts nearly empty: particle size, ground and the fitted

@@ -3,7 +3,9 @@
 // solids show where their meshes project. Small images keep it quick.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 
 #include <fmt/format.h>
@@ -12,6 +14,7 @@
 #include "mesh/shapes.h"
 #include "render/camera.h"
 #include "render/gl_context.h"
+#include "render/image.h"
 #include "render/renderer.h"
 #include "render/solids.h"
 #include "render/view_fit.h"
@@ -302,4 +305,101 @@ TEST(Renderer, Deterministic) {
   renderer.render(input_of(br::test::splash_frame(5000), camera, 0.05));
   const br::Image second = renderer.render(input_of(f, camera, 0.03));
   EXPECT_EQ(first.rgb, second.rgb);
+}
+
+// Drops flung out of a pool: with spray on they are small, white, soft dots; with it
+// off, refracting spheres of the water's radius. Per drop, the pixels it changes
+// (against the pool alone) and their colour.
+TEST(Renderer, IsolatedParticlesAreDrawnAsWhiteSpray) {
+  const double spacing = 0.05;
+  bw::FrameData pool;
+  br::test::add_block(pool, Vec3d(-0.6, -0.3, 0), Vec3d(0.6, 0.5, 0.2), spacing, 0.1, 5);
+  bw::FrameData splash = pool;
+  std::vector<Vec3d> drops;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 4; ++i) drops.emplace_back(-0.36 + 0.24 * i, 0.0, 0.45 + 0.16 * j);
+  for (const Vec3d& d : drops)
+    splash.x.push_back(float(d.x())), splash.y.push_back(float(d.y())), splash.z.push_back(float(d.z()));
+  br::Camera camera;
+  // From above, so that the drops are seen against the pool.
+  camera.position = Vec3d(0, -1.2, 1.5);
+  camera.target = Vec3d(0, 0.05, 0.45);
+
+  struct Look {
+    // Per drop: the pixels it changes; over them, the mean of min/max channel and of
+    // the darkest channel; and the darkest channel of its brightest pixel.
+    double pixels = 0, whiteness = 0, brightness = 0, peak = 0;
+  };
+  auto look = [&](bool spray) {
+    br::RenderSettings s = small_settings();
+    s.spray = spray;
+    br::Renderer renderer(context(), s);
+    const br::Image background = renderer.render(input_of(pool, camera, spacing));
+    const br::Image image = renderer.render(input_of(splash, camera, spacing));
+    EXPECT_EQ(renderer.render(input_of(splash, camera, spacing)).rgb, image.rgb);  // deterministic
+    if (const char* dir = std::getenv("BW_RENDER_TEST_IMAGES"))
+      br::write_png(image, fmt::format("{}/spray-{}.png", dir, spray ? "on" : "off"));
+    Look l;
+    int changed = 0;
+    for (const Vec3d& d : drops) {
+      const Eigen::Vector2d c = project(camera, d);
+      double peak = 0;
+      for (int y = int(c.y()) - 8; y <= int(c.y()) + 8; ++y)
+        for (int x = int(c.x()) - 8; x <= int(c.x()) + 8; ++x) {
+          if (x < 0 || y < 0 || x >= kWidth || y >= kHeight || same_pixel(image, background, x, y)) continue;
+          const std::uint8_t* p = image.pixel(x, y);
+          const double lo = std::min({p[0], p[1], p[2]}), hi = std::max({p[0], p[1], p[2]});
+          ++changed;
+          l.whiteness += lo / std::max(hi, 1.0);
+          l.brightness += lo;
+          peak = std::max(peak, lo);
+        }
+      l.peak += peak / drops.size();
+    }
+    l.pixels = double(changed) / drops.size();
+    l.whiteness /= std::max(changed, 1);
+    l.brightness /= std::max(changed, 1);
+    return l;
+  };
+  const Look spray = look(true), bubbles = look(false);
+  bw::test::figure("pixels per drop, spray", spray.pixels);
+  bw::test::figure("pixels per drop, bubbles", bubbles.pixels);
+  bw::test::figure("whiteness (min/max channel), spray", spray.whiteness);
+  bw::test::figure("whiteness (min/max channel), bubbles", bubbles.whiteness);
+  bw::test::figure("darkest channel, spray", spray.brightness);
+  bw::test::figure("darkest channel, bubbles", bubbles.brightness);
+  bw::test::figure("brightest pixel's darkest channel, spray", spray.peak);
+  bw::test::figure("brightest pixel's darkest channel, bubbles", bubbles.peak);
+  EXPECT_GT(spray.pixels, 2);  // still visible
+  EXPECT_LT(spray.pixels, 0.5 * bubbles.pixels);
+  EXPECT_GT(spray.whiteness, bubbles.whiteness);
+  EXPECT_GT(spray.whiteness, 0.75);
+  EXPECT_GT(spray.brightness, bubbles.brightness + 15);
+  EXPECT_GT(spray.peak, 200);  // white at the centre (a bubble's glint may be as bright)
+}
+
+// A sheet one particle thick and a jet two particles across stay water: their
+// pixels of the water's surface are the same with spray on as with it off.
+TEST(Renderer, ThinSheetsAndJetsStayWaterWithSpray) {
+  const double spacing = 0.03;
+  bw::FrameData thin;
+  // A sheet (one particle thick) and a jet (2 x 2 particles across).
+  br::test::add_block(thin, Vec3d(-0.4, 0, 0.3), Vec3d(0.4, 0.5 * spacing, 0.9), spacing, 0.1, 11);
+  br::test::add_block(thin, Vec3d(-0.5, -0.3, 0.1), Vec3d(0.5, -0.3 + 1.5 * spacing, 0.1 + 1.5 * spacing), spacing, 0.1,
+                      12);
+  br::Camera camera;
+  camera.position = Vec3d(0.6, -2.2, 1.0);
+  camera.target = Vec3d(0, 0, 0.5);
+  int fluid[2] = {0, 0};
+  for (bool spray : {false, true}) {
+    br::RenderSettings s = small_settings();
+    s.spray = spray;
+    br::Renderer renderer(context(), s);
+    renderer.render(input_of(thin, camera, spacing));
+    for (float d : renderer.read_fluid_layers().depth) fluid[spray] += d > 0;
+  }
+  bw::test::figure("surface pixels of the sheet and jet, spray off", fluid[0]);
+  bw::test::figure("surface pixels of the sheet and jet, spray on", fluid[1]);
+  ASSERT_GT(fluid[0], 1000);
+  EXPECT_GE(fluid[1], 0.99 * fluid[0]);
 }

@@ -2,6 +2,7 @@
 // particle spacing, and where solids and bodies are placed. No OpenGL needed.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -12,6 +13,7 @@
 #include "io/run_file.h"
 #include "mesh/shapes.h"
 #include "render/camera.h"
+#include "render/particle_classes.h"
 #include "render/particle_spacing.h"
 #include "render/render_settings.h"
 #include "render/sequence.h"
@@ -328,6 +330,117 @@ TEST(ParticleSpacing, MedianNearestNeighbourOfALattice) {
   const double before = br::estimate_particle_spacing(g.x.data(), g.y.data(), g.z.data(), g.fluid_count());
   g.x.insert(g.x.begin(), std::nanf("")), g.y.insert(g.y.begin(), 0.f), g.z.insert(g.z.begin(), INFINITY);
   EXPECT_EQ(br::estimate_particle_spacing(g.x.data(), g.y.data(), g.z.data(), g.fluid_count()), before);
+}
+
+namespace {
+
+// Positions on a lattice of `spacing` over i < ni, j < nj, k < nk, each moved by up
+// to `jitter` spacings (seeded), appended to f.
+void add_lattice(bw::FrameData& f, int ni, int nj, int nk, double spacing, double jitter, unsigned seed,
+                 const Vec3d& origin = Vec3d::Zero()) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-jitter, jitter);
+  for (int k = 0; k < nk; ++k)
+    for (int j = 0; j < nj; ++j)
+      for (int i = 0; i < ni; ++i) {
+        f.x.push_back(static_cast<float>(origin.x() + (i + u(rng)) * spacing));
+        f.y.push_back(static_cast<float>(origin.y() + (j + u(rng)) * spacing));
+        f.z.push_back(static_cast<float>(origin.z() + (k + u(rng)) * spacing));
+      }
+}
+
+std::vector<br::ParticleClass> classes_of(const bw::FrameData& f, double spacing) {
+  br::ClassifyParams p;
+  p.spacing = spacing;
+  return br::classify_particles(f.x.data(), f.y.data(), f.z.data(), f.x.size(), p);
+}
+
+}  // namespace
+
+// The grid finds exactly the neighbours a search over all pairs finds.
+TEST(RenderSpray, NeighbourCountsMatchAllPairs) {
+  bw::FrameData f;
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<float> u(-0.3f, 0.3f);
+  for (int n = 0; n < 1500; ++n) f.x.push_back(u(rng)), f.y.push_back(u(rng)), f.z.push_back(0.2f * u(rng));
+  f.x.push_back(40.f), f.y.push_back(-7.f), f.z.push_back(3.f);  // far away: a sparse box
+  const double radius = 0.05;
+  const std::vector<int> counts = br::count_neighbours(f.x.data(), f.y.data(), f.z.data(), f.x.size(), radius);
+  for (std::size_t a = 0; a < f.x.size(); ++a) {
+    int expected = 0;
+    for (std::size_t b = 0; b < f.x.size(); ++b) {
+      const double dx = f.x[b] - f.x[a], dy = f.y[b] - f.y[a], dz = f.z[b] - f.z[a];
+      expected += b != a && dx * dx + dy * dy + dz * dz <= radius * radius;
+    }
+    ASSERT_EQ(counts[a], expected) << "particle " << a;
+  }
+  EXPECT_EQ(counts.back(), 0);
+}
+
+// A block's interior is water, a lone particle and a pair are spray, a sheet one
+// particle thick and a jet two particles across are not spray.
+TEST(RenderSpray, BlockSheetJetAndDrops) {
+  const double h = 0.02;
+  bw::FrameData block;
+  add_lattice(block, 12, 12, 12, h, 0.1, 1);
+  const auto blocks = classes_of(block, h);
+  int interior = 0, interior_water = 0;
+  for (int k = 2; k < 10; ++k)
+    for (int j = 2; j < 10; ++j)
+      for (int i = 2; i < 10; ++i) {
+        ++interior;
+        interior_water += blocks[(k * 12 + j) * 12 + i] == br::ParticleClass::kWater;
+      }
+  EXPECT_EQ(interior_water, interior);
+
+  bw::FrameData sheet;
+  add_lattice(sheet, 20, 20, 1, h, 0.1, 2);
+  int sheet_spray = 0;
+  for (br::ParticleClass c : classes_of(sheet, h)) sheet_spray += c == br::ParticleClass::kSpray;
+  EXPECT_EQ(sheet_spray, 0);
+
+  bw::FrameData jet;
+  add_lattice(jet, 40, 2, 2, h, 0.1, 3);
+  int jet_spray = 0;
+  for (br::ParticleClass c : classes_of(jet, h)) jet_spray += c == br::ParticleClass::kSpray;
+  EXPECT_EQ(jet_spray, 0);
+
+  bw::FrameData drops;  // a lone drop and a pair, far from each other
+  drops.x = {0.f, 1.f, 1.02f};
+  drops.y = {0.f, 0.f, 0.f};
+  drops.z = {0.f, 0.f, 0.01f};
+  for (br::ParticleClass c : classes_of(drops, h)) EXPECT_EQ(c, br::ParticleClass::kSpray);
+
+  // The same particles in another order get the same classes.
+  bw::FrameData reversed = sheet;
+  add_lattice(reversed, 1, 1, 1, h, 0, 0, Vec3d(3, 3, 3));
+  std::reverse(reversed.x.begin(), reversed.x.end());
+  std::reverse(reversed.y.begin(), reversed.y.end());
+  std::reverse(reversed.z.begin(), reversed.z.end());
+  const auto forward = classes_of(sheet, h), backward = classes_of(reversed, h);
+  EXPECT_EQ(backward.front(), br::ParticleClass::kSpray);
+  for (std::size_t n = 0; n < forward.size(); ++n) EXPECT_EQ(backward[backward.size() - 1 - n], forward[n]);
+}
+
+TEST(RenderSettings, SprayKeys) {
+  const auto d = br::parse_render_settings("", "s.toml");
+  EXPECT_TRUE(d.spray);
+  EXPECT_EQ(d.spray_neighbours, 3);
+  EXPECT_EQ(d.foam_neighbours, 8);
+  const auto s = br::parse_render_settings(
+      "[render]\nspray = false\nspray_neighbours = 2\nfoam_neighbours = 6\nspray_size = 0.4\n"
+      "spray_opacity = 0.5\nfoam = 0\n",
+      "s.toml");
+  EXPECT_FALSE(s.spray);
+  EXPECT_EQ(s.spray_neighbours, 2);
+  EXPECT_EQ(s.foam_neighbours, 6);
+  EXPECT_EQ(s.spray_size, 0.4);
+  EXPECT_EQ(s.spray_opacity, 0.5);
+  EXPECT_EQ(s.foam, 0);
+  EXPECT_EQ(error_of([] { br::parse_render_settings("[render]\nspray_neighbours = 5\nfoam_neighbours = 4\n", "s.toml"); }),
+            "s.toml: render.foam_neighbours: 4 is outside [render.spray_neighbours = 5, 1000]");
+  EXPECT_EQ(error_of([] { br::parse_render_settings("[render]\nspray_opacity = 2\n", "s.toml"); }),
+            "s.toml: render.spray_opacity: must lie in [0, 1]");
 }
 
 // A dynamic solid's mesh is placed by x_world = R(q) (x_ref - c_ref) + position, where

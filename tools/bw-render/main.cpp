@@ -19,6 +19,7 @@ struct Options {
   std::optional<int> width, height;
   std::string camera;          // PX,PY,PZ:TX,TY,TZ[:FOV]
   std::string filter;
+  std::string spray;  // "on", "off" or empty: the scene's render.spray
   std::string view = "shaded";
   std::string video;
   double fps = 0;
@@ -45,6 +46,7 @@ struct Options {
     if (!filter.empty()) j.settings.filter = *bw::render::parse_filter(filter);
     j.settings.view = *bw::render::parse_view(view);
     if (radius > 0) j.settings.particle_radius = radius;
+    if (!spray.empty()) j.settings.spray = spray == "on";
     j.settings.validate("command line");
     return j;
   }
@@ -111,6 +113,8 @@ int main(int argc, char** argv) {
   app.add_option("--view", o.view, "What to draw: the picture or a layer of the fluid")
       ->check(CLI::IsMember({"shaded", "depth", "thickness", "normals"}));
   app.add_option("--radius", o.radius, "Particle sphere radius in m (default: estimated)")->check(bw::cli::kPositive);
+  app.add_option("--spray", o.spray, "Draw isolated particles as spray and tint thin water as foam (default on)")
+      ->check(CLI::IsMember({"on", "off"}));
   app.add_option("--video", o.video, "Also encode a video (.mp4, .mov, .mkv) with ffmpeg");
   app.add_option("--fps", o.fps, "Video frame rate (default: from the frames' times)")->check(bw::cli::kPositive);
   app.add_option("--device", o.device, "EGL device: auto, or an index (0, 1, ...) to pick one GPU of several")
