@@ -50,8 +50,15 @@ jobs=$tmp/out/slurm/dambreak/jobs
 sim=$(awk '$1 == "sim" { print $2 }' "$jobs")
 video=$(awk '$1 == "video" { print $2 }' "$jobs")
 state() { scontrol show job "$1" 2>/dev/null | grep -o 'JobState=[A-Z_]*' | cut -d= -f2; }
-# Wait for the video job; a requeued simulation waits Slurm's requeue delay (two
-# minutes) for its next start, which the test cuts short.
+# Wait for the video job; a requeued simulation waits Slurm's requeue delay for its
+# next start: the credential lifetime, 10 s in local-slurm.sh's slurm.conf (120 s by
+# default). Starting it sooner (scontrol update StartTime=now) races the revocation of
+# its last run's credential, and slurmd kills the new run ("Job credential revoked").
+# Slurm sends the early signal at its first check after a start (within about 30 s)
+# when the limit is that near, so every run of a 1-minute job would be stopped after a
+# frame or two: once the job has been stopped and requeued, its limit is raised so
+# that the next run finishes.
+raised=
 while :; do
   s=$(state "$video")
   case $s in
@@ -59,8 +66,8 @@ while :; do
     FAILED|CANCELLED|TIMEOUT|NODE_FAIL|OUT_OF_MEMORY|"")
       say "video job $video: ${s:-gone}"; logs; exit 1 ;;
   esac
-  if [[ $(state "$sim") == PENDING ]] && scontrol show job "$sim" | grep -q 'Restarts=[1-9]'; then
-    scontrol update JobId="$sim" StartTime=now >/dev/null 2>&1 || true
+  if [[ -z $raised && $(state "$sim") == PENDING ]] && scontrol show job "$sim" | grep -q 'Restarts=[1-9]'; then
+    scontrol update JobId="$sim" TimeLimit=10 >/dev/null 2>&1 && raised=1
   fi
   if [[ $(state "$sim") =~ ^(FAILED|CANCELLED|TIMEOUT)$ ]] || ((SECONDS - start > 300)); then
     say "simulation job $sim: $(state "$sim") after $((SECONDS - start)) s"; logs; exit 1
