@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace bw {
 
@@ -15,5 +16,9 @@ std::string human_duration(double seconds);
 std::string human_count(double count);
 // JSON string literal with quotes and escapes.
 std::string json_quote(std::string_view text);
+
+// The pieces of `text` between the separators, empty ones included ("a::b" gives
+// "a", "", "b"; "" gives one empty piece).
+std::vector<std::string> split(const std::string& text, char separator);
 
 }  // namespace bw

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/text.h"
 
 namespace bw {
 namespace fs = std::filesystem;
@@ -24,14 +25,7 @@ std::optional<int> parse_int(const std::string& s) {
 FrameRange parse_frame_range(const std::string& text) {
   FrameRange r;
   const auto bad = [&](const char* why) { fail_input("--frames '{}': {}", text, why); };
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t colon = text.find(':', start);
-    parts.push_back(text.substr(start, colon == std::string::npos ? std::string::npos : colon - start));
-    if (colon == std::string::npos) break;
-    start = colon + 1;
-  }
+  const std::vector<std::string> parts = split(text, ':');
   if (parts.size() > 3) bad("expected A:B or A:B:S");
   auto number = [&](const std::string& s) -> std::optional<int> {
     if (s.empty()) return std::nullopt;

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "common/text.h"
 #include "io/h5.h"
 #include "io/particles_file.h"
 
@@ -28,17 +29,6 @@ std::vector<double> flatten(const std::vector<Vec3d>& v) {
   return flat;
 }
 
-std::vector<std::string> split_lines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t end = text.find('\n', start);
-    lines.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
-    if (end == std::string::npos) break;
-    start = end + 1;
-  }
-  return lines;
-}
 
 }  // namespace
 
@@ -248,7 +238,7 @@ RunRecord read_run(const std::string& path) {
   const auto voxels = bodies.read_rows<std::int32_t>("voxels", 0, &rows);
   const auto inertia = bodies.read_rows<double>("inertia", 9, &rows);
   const auto centers = bodies.read_rows<double>("reference_center", 3, &rows);
-  const std::vector<std::string> names = nb ? split_lines(bodies.attr_string("names")) : std::vector<std::string>{};
+  const std::vector<std::string> names = nb ? split(bodies.attr_string("names"), '\n') : std::vector<std::string>{};
   if (parent.size() != nb || mass.size() != nb || created.size() != nb || voxels.size() != nb ||
       inertia.size() != 9 * nb || centers.size() != 3 * nb || names.size() != nb) {
     fail_input("{}: body arrays differ in length", bodies.where());

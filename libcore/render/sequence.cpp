@@ -9,6 +9,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/text.h"
 #include "common/terminal.h"
 #include "io/frame_file.h"
 #include "io/frame_range.h"
@@ -58,14 +59,7 @@ std::vector<double> parse_numbers(std::string_view s, const std::string& whole) 
 
 Camera parse_camera(const std::string& text) {
   Camera c;
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t colon = text.find(':', start);
-    parts.push_back(text.substr(start, colon == std::string::npos ? std::string::npos : colon - start));
-    if (colon == std::string::npos) break;
-    start = colon + 1;
-  }
+  const std::vector<std::string> parts = split(text, ':');
   if (parts.size() < 2 || parts.size() > 3) fail_input("--camera '{}': expected PX,PY,PZ:TX,TY,TZ[:FOV]", text);
   const auto p = parse_numbers(parts[0], text), t = parse_numbers(parts[1], text);
   if (p.size() != 3 || t.size() != 3) fail_input("--camera '{}': position and target need 3 numbers each", text);
