@@ -372,3 +372,20 @@ __kernel void body_reduce(uint nblocks, __global const BodyBlock* blocks, __glob
   }
   out[g] = r;
 }
+
+// Per sensor s (sim/sensors.h): the pressure its face's particles carry at this step,
+// -sum_k w_k F_k . n_s (Pa), over its particles first[s] .. first[s + 1] - 1 (master
+// indices of static particles; forces from boundary_forces).
+__kernel void sensor_pressure(uint count, __global const uint* first, __global const uint* particle,
+                              __global const float* weight, __global const float* normal, __global const float* fx,
+                              __global const float* fy, __global const float* fz, __global float* out) {
+  const uint s = get_global_id(0);
+  if (s >= count) return;
+  const float nx = normal[3 * s], ny = normal[3 * s + 1], nz = normal[3 * s + 2];
+  float sum = 0.0f;
+  for (uint k = first[s]; k < first[s + 1]; ++k) {
+    const uint m = particle[k];
+    sum += weight[k] * (fx[m] * nx + fy[m] * ny + fz[m] * nz);
+  }
+  out[s] = -sum;
+}

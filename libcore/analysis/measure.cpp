@@ -79,22 +79,7 @@ double probe(const FrameData& frame, Field field, const Vec3d& point, double h) 
 std::vector<Vec3d> Sensor::samples() const {
   const double d = offset < 0 ? 0.5 * h : offset;
   const Vec3d n = normal.normalized();
-  const Vec3d centre = point + d * n;
-  if (!(radius > 0)) return {centre};
-  // Two unit vectors in the disc's plane.
-  const Vec3d a = (std::abs(n.x()) < 0.9 ? Vec3d::UnitX() : Vec3d::UnitY()).cross(n).normalized();
-  const Vec3d b = n.cross(a);
-  // 1 + 6 + 12 points, each standing for an equal area of the disc: the centre for
-  // the disc r < R sqrt(1/19), the rings for the annuli up to R sqrt(7/19) and R, each
-  // ring at the radius that halves its annulus' area (sqrt(4/19) R, sqrt(13/19) R).
-  std::vector<Vec3d> out{centre};
-  const std::pair<int, double> rings[] = {{6, std::sqrt(4.0 / 19)}, {12, std::sqrt(13.0 / 19)}};
-  for (const auto& [count, fraction] : rings)
-    for (int j = 0; j < count; ++j) {
-      const double angle = 2 * std::numbers::pi * (j + 0.5 * (count == 12)) / count;
-      out.push_back(centre + fraction * radius * (std::cos(angle) * a + std::sin(angle) * b));
-    }
-  return out;
+  return disc_points(point + d * n, n, radius);
 }
 
 double sensor_pressure(const FrameData& frame, const Sensor& sensor) {

@@ -3,8 +3,11 @@
 #pragma once
 
 #include <array>
+#include <cmath>
+#include <numbers>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -44,5 +47,25 @@ struct TriMesh {
     return box;
   }
 };
+
+// Points that stand for equal areas of the disc of `radius` about `centre` in the
+// plane of unit normal `normal` (a pressure sensor's membrane): 1 + 6 + 12 points,
+// the centre for the disc r < R sqrt(1/19), the rings for the annuli up to R sqrt(7/19)
+// and R, each ring at the radius that halves its annulus' area (sqrt(4/19) R,
+// sqrt(13/19) R). Only the centre when radius is 0.
+inline std::vector<Vec3d> disc_points(const Vec3d& centre, const Vec3d& normal, double radius) {
+  if (!(radius > 0)) return {centre};
+  // Two unit vectors in the disc's plane.
+  const Vec3d a = (std::abs(normal.x()) < 0.9 ? Vec3d::UnitX() : Vec3d::UnitY()).cross(normal).normalized();
+  const Vec3d b = normal.cross(a);
+  std::vector<Vec3d> out{centre};
+  const std::pair<int, double> rings[] = {{6, std::sqrt(4.0 / 19)}, {12, std::sqrt(13.0 / 19)}};
+  for (const auto& [count, fraction] : rings)
+    for (int j = 0; j < count; ++j) {
+      const double angle = 2 * std::numbers::pi * (j + 0.5 * (count == 12)) / count;
+      out.push_back(centre + fraction * radius * (std::cos(angle) * a + std::sin(angle) * b));
+    }
+  return out;
+}
 
 }  // namespace bw

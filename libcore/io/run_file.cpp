@@ -29,6 +29,11 @@ std::vector<double> flatten(const std::vector<Vec3d>& v) {
   return flat;
 }
 
+std::vector<Vec3d> unflatten(const std::vector<double>& flat) {
+  std::vector<Vec3d> v(flat.size() / 3);
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = Vec3d(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
+  return v;
+}
 
 }  // namespace
 
@@ -142,6 +147,26 @@ void write_run(const RunRecord& run, const std::string& path) {
       impulse.insert(impulse.end(), row.begin(), row.end());
     }
     loads.write<double>("impulse", flatten(impulse), {run.loads.size(), nsolids, 3});
+  }
+  if (!run.sensors.names.empty()) {
+    const SensorRecord& r = run.sensors;
+    const std::size_t ns = r.names.size();
+    if (r.at.size() != ns || r.normal.size() != ns || r.radius.size() != ns || r.particles.size() != ns ||
+        r.pressure.size() % ns != 0)
+      fail_run("{}: sensor arrays of different lengths ({} names)", path, ns);
+    h5::Group sensors = root.create_group("sensors");
+    std::string name_lines;
+    for (std::size_t i = 0; i < ns; ++i) name_lines += (i ? "\n" : "") + r.names[i];
+    sensors.set_attr("names", name_lines);
+    sensors.set_attr<double>("interval", r.interval);
+    sensors.write<double>("at", flatten(r.at), {ns, 3});
+    sensors.write<double>("normal", flatten(r.normal), {ns, 3});
+    sensors.write("radius", r.radius);
+    sensors.write("particles", r.particles);
+    std::vector<double> middle(r.samples());
+    for (std::size_t k = 0; k < middle.size(); ++k) middle[k] = (static_cast<double>(k) + 0.5) * r.interval;
+    sensors.write("time", middle);
+    sensors.write<double>("pressure", r.pressure, {r.samples(), ns});
   }
   file.commit();
 }
@@ -287,6 +312,30 @@ RunRecord read_run(const std::string& path) {
       ev.child_component.push_back(child_component[c]);
     }
     run.fractures.push_back(std::move(ev));
+  }
+  if (root.is_group("sensors")) {
+    const h5::Group sensors = root.open_group("sensors");
+    SensorRecord& r = run.sensors;
+    r.names = split(sensors.attr_string("names"), '\n');
+    const std::size_t count = r.names.size();
+    r.interval = sensors.attr<double>("interval");
+    // want 0: any number of rows
+    auto table = [&](const char* name, std::size_t want, std::size_t columns) {
+      h5::Shape shape;
+      auto v = sensors.read<double>(name, &shape);
+      if (shape.size() != 2 || shape[1] != columns || (want > 0 && shape[0] != want))
+        fail_input("{}: expected {} x {} values", sensors.where(name), want > 0 ? fmt::format("{}", want) : "N",
+                   columns);
+      return v;
+    };
+    r.at = unflatten(table("at", count, 3));
+    r.normal = unflatten(table("normal", count, 3));
+    r.radius = sensors.read<double>("radius");
+    r.particles = sensors.read<std::int64_t>("particles");
+    r.pressure = table("pressure", 0, count);
+    if (r.radius.size() != count || r.particles.size() != count)
+      fail_input("{}: {} sensors but {} radii and {} particle counts", sensors.where(), count, r.radius.size(),
+                 r.particles.size());
   }
   if (root.is_group("loads")) {
     const h5::Group loads = root.open_group("loads");

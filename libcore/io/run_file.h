@@ -58,6 +58,18 @@ struct FractureEvent {
   std::vector<std::int32_t> child_component;
 };
 
+// With [[sensor]]s: what each sensor read (docs/formats.md, /sensors): sample k is the
+// mean pressure on its disc over [k, k + 1] x interval (Pa).
+struct SensorRecord {
+  std::vector<std::string> names;
+  std::vector<Vec3d> at, normal;    // on the face; unit, out of the solid
+  std::vector<double> radius;       // m
+  std::vector<std::int64_t> particles;  // boundary particles it reads
+  double interval = 0;              // s
+  std::vector<double> pressure;     // samples x sensors, sample-major
+  std::size_t samples() const { return names.empty() ? 0 : pressure.size() / names.size(); }
+};
+
 struct RunRecord {
   std::string scene_text;
   std::string scene_path;
@@ -79,6 +91,7 @@ struct RunRecord {
   // impulse of the fluid and of contacts on it since t = 0 (N s; docs/formats.md,
   // /loads). Empty otherwise.
   std::vector<std::vector<Vec3d>> loads;
+  SensorRecord sensors;             // no names without sensors
 };
 
 // Every solid's mesh in its reference configuration, x_ref = t + R (s x_mesh), from

@@ -27,6 +27,8 @@ const std::set<std::string> kForeignTables = {"camera", "light", "render"};
 // Limits that keep a scene within what the solver can index and store.
 constexpr std::int64_t kMaxParticles = 1'000'000'000;   // ids are 32-bit on the device
 constexpr double kMaxFrames = 1e6;
+constexpr double kMaxSensorRate = 1e6;     // Hz
+constexpr double kMaxSensorSamples = 1e7;  // per sensor over the run
 constexpr double kMinSupportRatio = 1.0;  // h / spacing
 constexpr double kMaxSupportRatio = 4.0;
 // Most fragments a scene may hold (body indices are int32 in the run file).
@@ -455,6 +457,35 @@ void read_fracture(Reader& top, Scene& s) {
   r.finish();
 }
 
+void read_sensor(Reader& r, Scene& s) {
+  Sensor sensor;
+  if (!r.has("name")) r.fail("name", "missing (required: the sensor's name in the run file)");
+  sensor.name = r.string("name", "");
+  if (sensor.name.empty() || sensor.name.find_first_of(" ,\t\n") != std::string::npos)
+    r.fail("name", fmt::format("'{}' must be a word without spaces or commas", sensor.name));
+  for (const Sensor& other : s.sensors)
+    if (other.name == sensor.name) r.fail("name", fmt::format("'{}' names another sensor too", sensor.name));
+  sensor.at = r.required_vec3("at");
+  sensor.normal = r.vec3("normal", sensor.normal);
+  if (r.has("normal")) {
+    if (!(sensor.normal.norm() > 0)) r.fail("normal", "must not be zero (leave it out to take the face's)");
+    sensor.normal.normalize();
+  }
+  sensor.radius = r.number("radius", sensor.radius);
+  non_negative(r, "radius", sensor.radius);
+  if (r.has("solid")) {
+    const std::string name = r.string("solid", "");
+    const auto it = std::find_if(s.solids.begin(), s.solids.end(), [&](const Solid& solid) { return solid.name == name; });
+    if (it == s.solids.end()) r.fail("solid", fmt::format("'{}' is not a solid of the scene", name));
+    if (it->body())
+      r.fail("solid", fmt::format("'{}' is {}; sensors sit on static solids", name,
+                                  it->breakable ? "breakable" : "dynamic"));
+    sensor.solid = static_cast<std::int32_t>(it - s.solids.begin());
+  }
+  r.finish();
+  s.sensors.push_back(sensor);
+}
+
 void read_output(Reader& top, Scene& s) {
   std::vector<std::string> fields = {"velocity"};
   if (const toml::table* t = top.table("output")) {
@@ -465,6 +496,13 @@ void read_output(Reader& top, Scene& s) {
     if (every < 0 || every > 1000000)
       r.fail("checkpoint_every", fmt::format("{} is not a number of frames from 0 to 1000000", every));
     s.checkpoint_every = static_cast<int>(every);
+    s.sensor_rate = r.number("sensor_rate", s.sensor_rate);
+    positive(r, "sensor_rate", s.sensor_rate);
+    if (s.sensor_rate > kMaxSensorRate)
+      r.fail("sensor_rate", fmt::format("{} Hz is more than {} Hz", s.sensor_rate, kMaxSensorRate));
+    if (s.sensor_rate * s.time.end > kMaxSensorSamples)
+      r.fail("sensor_rate", fmt::format("{} samples per second over {} s is more than {} samples", s.sensor_rate,
+                                        s.time.end, kMaxSensorSamples));
     r.finish();
   }
   s.fields = FrameFields{};
@@ -544,6 +582,11 @@ Scene parse_scene(std::string_view text, const std::string& path, const std::vec
     read_solid(r, s);
   }
   read_fracture(top, s);
+  const auto sensors = top.tables("sensor");
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    Reader r(*sensors[i], fmt::format("sensor[{}]", i), s.path);
+    read_sensor(r, s);
+  }
   read_output(top, s);
   for (const std::string& t : kForeignTables) {
     if (top.has(t) && !root.get(t)->is_table()) top.fail(t, "expected a table");

@@ -102,6 +102,17 @@ struct FractureSettings {
   std::int64_t max_chunks = 64;    // MSC: most bodies of breakable origin at once
 };
 
+// [[sensor]]: a pressure sensor on a face of a static solid (docs/scene.md,
+// "Sensors"; sim/sensors.h): what a membrane of `radius` at `at` feels, from the
+// forces of the fluid on the face's boundary particles.
+struct Sensor {
+  std::string name;
+  Vec3d at = Vec3d::Zero();
+  Vec3d normal = Vec3d::Zero();    // unit, out of the solid into the fluid; zero: the face's own
+  double radius = 0;               // m; 0: the pressure at the point
+  std::int32_t solid = -1;         // scene index of the solid; -1: any static solid
+};
+
 struct Scene {
   std::string path;                // as given
   std::string text;                // the file's text
@@ -120,6 +131,8 @@ struct Scene {
   std::vector<std::string> field_names;
   bool loads = false;              // [output] loads: the run file records each solid's load
   int checkpoint_every = 0;        // output.checkpoint_every: frames between checkpoints, 0: none
+  std::vector<Sensor> sensors;
+  double sensor_rate = 1000;       // output.sensor_rate: samples per second of each sensor (Hz)
 };
 
 // Reads and checks a scene file. Throws InputError "<path>: <key>: <problem>".

@@ -223,6 +223,16 @@ void Solver::save_state(h5::Group& group) {
     }
   }
 
+  if (s.sensors) {
+    // The sample in progress and those before it.
+    const SensorStage& st = *s.sensors;
+    h5::Group sg = group.create_group("sensors");
+    sg.set_attr<std::int64_t>("sample", st.sample);
+    sg.set_attr<double>("interval", st.interval);
+    sg.write<double>("partial", st.partial);
+    sg.write<double>("samples", st.samples);
+  }
+
   if (s.fracture) {
     FractureStage& fs = *s.fracture;
     h5::Group fg = group.create_group("fracture");
@@ -356,6 +366,22 @@ void Solver::load_state(const h5::Group& group) {
   }
   if (group.attr<std::uint32_t>("boundary") != s.nb)
     fail_input("{}: {} boundary particles, this run has {}", group.where(), group.attr<std::uint32_t>("boundary"), s.nb);
+
+  if (group.has("sensors") != static_cast<bool>(s.sensors))
+    fail_input("{}: {} sensors, this run's scene {}", group.where(), group.has("sensors") ? "has" : "has no",
+               s.sensors ? "has some" : "has none");
+  if (s.sensors) {
+    SensorStage& st = *s.sensors;
+    const h5::Group sg = group.open_group("sensors");
+    if (sg.attr<double>("interval") != st.interval)
+      fail_input("{}: samples of {} s, this run's of {} s", sg.where(), sg.attr<double>("interval"), st.interval);
+    st.sample = sg.attr<std::int64_t>("sample");
+    st.partial = read_exact<double>(sg, "partial", st.sensors.size());
+    st.samples = sg.read<double>("samples");
+    if (st.samples.size() != static_cast<std::size_t>(st.sample) * st.sensors.size())
+      fail_input("{}: {} values for {} samples of {} sensors", sg.where("samples"), st.samples.size(), st.sample,
+                 st.sensors.size());
+  }
 
   if (s.fracture) {
     FractureStage& fs = *s.fracture;

@@ -536,6 +536,81 @@ void Solver::measure_static_reactions(bool on) {
   s.boundary_dirty = true;
 }
 
+void Solver::set_sensors(std::vector<SensorWeights> sensors, double interval) {
+  Impl& s = *impl_;
+  if (sensors.empty()) {
+    s.sensors.reset();
+    return;
+  }
+  if (!(interval > 0)) fail_run("sensor interval {} s must be positive", interval);
+  measure_static_reactions(true);
+  auto st = std::make_unique<SensorStage>();
+  st->kernel = s.rigid->program.kernel("sensor_pressure");
+  std::vector<std::uint32_t> first{0}, particle;
+  std::vector<float> weight, normal;
+  for (const SensorWeights& w : sensors) {
+    for (std::size_t k = 0; k < w.particle.size(); ++k) {
+      if (w.particle[k] >= s.rigid->ns)
+        fail_run("sensor '{}': particle {} is not a static particle (the solver has {})", w.name, w.particle[k],
+                 s.rigid->ns);
+      particle.push_back(w.particle[k]);
+      weight.push_back(static_cast<float>(w.weight[k]));
+    }
+    first.push_back(static_cast<std::uint32_t>(particle.size()));
+    for (int c = 0; c < 3; ++c) normal.push_back(static_cast<float>(w.normal[c]));
+  }
+  st->first = s.uints(first.size(), "sensor first");
+  st->particle = s.uints(particle.size(), "sensor particles");
+  st->weight = s.floats(weight.size(), "sensor weights");
+  st->normal = s.floats(normal.size(), "sensor normals");
+  st->out = s.floats(sensors.size(), "sensor pressures");
+  s.ctx.write_vector(st->first, first);
+  if (!particle.empty()) {
+    s.ctx.write_vector(st->particle, particle);
+    s.ctx.write_vector(st->weight, weight);
+  }
+  s.ctx.write_vector(st->normal, normal);
+  st->interval = interval;
+  st->sample = static_cast<std::int64_t>(std::floor(s.t / interval + 1e-9));
+  st->partial.assign(sensors.size(), 0.0);
+  st->sensors = std::move(sensors);
+  s.sensors = std::move(st);
+}
+
+const std::vector<SensorWeights>& Solver::sensors() const {
+  static const std::vector<SensorWeights> none;
+  return impl_->sensors ? impl_->sensors->sensors : none;
+}
+
+const std::vector<double>& Solver::sensor_samples() const {
+  static const std::vector<double> none;
+  return impl_->sensors ? impl_->sensors->samples : none;
+}
+
+// The readings of this step's forces, held from t0 to t1, into the samples they
+// overlap (a sample closes when the step reaches its end, to a billionth of it).
+void Solver::Impl::sample_sensors(double t0, double t1) {
+  SensorStage& st = *sensors;
+  const std::uint32_t count = static_cast<std::uint32_t>(st.sensors.size());
+  st.kernel.args(count, st.first, st.particle, st.weight, st.normal, rigid->fx, rigid->fy, rigid->fz, st.out);
+  ctx.launch(st.kernel, count);
+  const std::vector<float> now = ctx.read_vector<float>(st.out, count);
+  double from = t0;
+  while (from < t1) {
+    const double end = static_cast<double>(st.sample + 1) * st.interval;
+    const bool closes = t1 >= end - 1e-9 * st.interval;
+    const double until = std::min(t1, end);
+    for (std::uint32_t k = 0; k < count; ++k) st.partial[k] += double(now[k]) * (until - from);
+    if (!closes) break;
+    for (std::uint32_t k = 0; k < count; ++k) {
+      st.samples.push_back(st.partial[k] / st.interval);
+      st.partial[k] = 0;
+    }
+    ++st.sample;
+    from = end;
+  }
+}
+
 Vec3d Solver::static_impulse() const { return impl_->rigid ? impl_->rigid->static_impulse : Vec3d::Zero(); }
 
 std::vector<Vec3d> Solver::solid_impulses() const {

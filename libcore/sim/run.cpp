@@ -157,6 +157,13 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
   s.context = std::make_unique<compute::Context>(device);
   s.solver = std::make_unique<Solver>(s.setup, *s.context);
   if (scene.loads) s.solver->measure_static_reactions(true);
+  if (!scene.sensors.empty()) {
+    std::vector<SensorWeights> sensors;
+    for (std::size_t i = 0; i < scene.sensors.size(); ++i)
+      sensors.push_back(sensor_weights(s.setup.boundary, scene.sensors[i], s.setup.params.h,
+                                       fmt::format("{}: sensor[{}] '{}'", scene.path, i, scene.sensors[i].name)));
+    s.solver->set_sensors(std::move(sensors), 1 / scene.sensor_rate);
+  }
 
   // Fluid placed on top of a solid or another block starts compressed, and a stiff
   // fluid turns that into a blast at once: refuse it with the place to look at.
@@ -216,6 +223,14 @@ RunSummary Simulation::run() {
     r.scale = solid.scale;
     record.solids.push_back(r);
   }
+  for (const SensorWeights& w : solver.sensors()) {
+    record.sensors.names.push_back(w.name);
+    record.sensors.at.push_back(w.at);
+    record.sensors.normal.push_back(w.normal);
+    record.sensors.radius.push_back(w.radius);
+    record.sensors.particles.push_back(static_cast<std::int64_t>(w.particle.size()));
+  }
+  record.sensors.interval = 1 / scene.sensor_rate;
   record.parameters = {{"spacing", p.spacing},
                        {"smoothing_length", p.h},
                        {"particle_mass", p.mass},
@@ -369,6 +384,7 @@ RunSummary Simulation::run() {
     row.wall_time = wall_now();
     record.frames.push_back(row);
     if (scene.loads) record.loads.push_back(solver.solid_impulses());
+    record.sensors.pressure = solver.sensor_samples();
     // Bodies, including those added since the last frame (rows are never reused).
     record.bodies.clear();
     for (int b = 0; b < solver.body_count(); ++b) {

@@ -340,6 +340,7 @@ StepInfo Solver::step(double t_target) {
   }
 
   if (s.rigid) s.rigid_forces(dt);
+  if (s.sensors) s.sample_sensors(s.t, lands ? t_target : s.t + dt);
   if (s.fracture) s.fracture_load(dt);
   s.integrate.args(s.P, s.n, static_cast<float>(dt), s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.ax, s.ay,
                    s.az, s.phi, s.bstart, s.bx, s.by, s.bz, s.bnx, s.bny, s.bnz, s.bvx, s.bvy, s.bvz, s.hold[f],

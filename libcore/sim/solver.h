@@ -43,6 +43,7 @@
 #include "io/frame_file.h"
 #include "io/run_file.h"
 #include "rigid/body.h"
+#include "sim/sensors.h"
 #include "sim/setup.h"
 
 namespace bw::h5 {
@@ -191,6 +192,15 @@ class Solver {
   // on the bodies it became (itself, or its fragments, fixed ones included), without
   // gravity. Empty when not measured.
   std::vector<Vec3d> solid_impulses() const;
+
+  // Pressure sensors (sim/sensors.h) from the next step on: each step's reading, from
+  // the forces of that step, is averaged over samples of `interval` s, the k-th over
+  // [k, k + 1] x interval from t = 0. Measures the static reactions.
+  void set_sensors(std::vector<SensorWeights> sensors, double interval);
+  // The sensors, and their completed samples (Pa), sample after sample, one value
+  // per sensor each. Empty without sensors.
+  const std::vector<SensorWeights>& sensors() const;
+  const std::vector<double>& sensor_samples() const;
 
   // The density of every fluid particle as the kernel sum gives it now (the sum the
   // continuity equation starts from), in the order of frame(); for the check that

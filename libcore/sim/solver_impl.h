@@ -20,6 +20,7 @@
 #include "compute/radix_sort.h"
 #include "sim/fracture_stage.h"
 #include "sim/solver.h"
+#include "sim/sensors.h"
 #include "sim/setup.h"
 #include "sph_common.h"
 
@@ -108,6 +109,18 @@ struct RigidStage {
   std::vector<Vec3d> solid_impulse;      // N s, per scene solid: static, or its bodies and fragments
 };
 
+// Pressure sensors (sim/sensors.h, rigid_stage.cpp): their particles and weights on
+// the device, and the samples so far.
+struct SensorStage {
+  Kernel kernel;
+  Buffer first, particle, weight, normal, out;
+  std::vector<SensorWeights> sensors;
+  double interval = 0;        // s per sample
+  std::int64_t sample = 0;    // the sample being accumulated: [sample, sample + 1] x interval
+  std::vector<double> partial;  // its pressure integrated over time so far (Pa s), per sensor
+  std::vector<double> samples;  // the completed samples (Pa), sample after sample
+};
+
 struct Solver::Impl {
   compute::Context& ctx;
   Parameters params;
@@ -159,6 +172,8 @@ struct Solver::Impl {
   Buffer bflat;                 // sorted flatness of the boundary particles (with bodies only)
   std::vector<SolidMaterial> materials;
   bool boundary_dirty = false;  // bodies moved: sort the boundary again before the density
+  // sensors: null unless the scene has some
+  std::unique_ptr<SensorStage> sensors;
   // fracture: null unless the scene has a breakable solid (no kernel, no buffer)
   std::unique_ptr<FractureStage> fracture;
 
@@ -180,6 +195,7 @@ struct Solver::Impl {
   BodyEntry& body_entry(int body);
   const BodyEntry& body_entry(int body) const;
   std::uint64_t rigid_bytes() const;
+  void sample_sensors(double t0, double t1);
 
   // fracture_stage.cpp
   void enable_fracture(const Setup& setup, const std::vector<int>& body_of_setup);

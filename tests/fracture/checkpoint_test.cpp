@@ -3,6 +3,7 @@
 // frames (byte for byte) and run-file rows as a run that never stopped; checkpoints
 // of another scene, version, end time or device are refused with one line; SIGTERM
 // stops bw-sim after a whole frame with a checkpoint and how to go on.
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -142,12 +143,22 @@ TEST(Checkpoint, ResumedRunIsBitIdenticalWithBodiesAndFracture) {
 
 // The continuity equation's densities are state, and so are the loads the run file
 // records: both go through a checkpoint, bit for bit.
-TEST(Checkpoint, ContinuityDensitiesAndLoadsResumeBitIdentical) {
+TEST(Checkpoint, ContinuityDensitiesLoadsAndSensorsResumeBitIdentical) {
   Fixture fx;
-  fx.scene = scene::load_scene(fx.dir.file("scene.toml"), {"fluid.density=\"continuity\"", "output.loads=true"});
+  fx.scene = scene::load_scene(fx.dir.file("scene.toml"),
+                               {"fluid.density=\"continuity\"", "output.loads=true", "output.sensor_rate=430"});
+  // A sensor on the floor under the water's path: 430 samples a second, so that a
+  // stop at a frame (every 0.01 s) falls inside a sample.
+  scene::Sensor floor;
+  floor.name = "floor";
+  floor.at = Vec3d(0.2, 0.15, 0);
+  floor.radius = 0.02;
+  floor.solid = 0;
+  fx.scene.sensors.push_back(floor);
   fx.run("whole");
   const RunRecord reference = read_run(fx.dir.file("whole/run.h5"));
   ASSERT_EQ(reference.loads.size(), reference.frames.size());
+  ASSERT_EQ(reference.sensors.samples(), 25u);
   fx.run("parts", 2);
   fx.run("parts", -1, true);
   expect_same_frames(fx.dir.file("whole"), fx.dir.file("parts"), 6);
@@ -155,6 +166,9 @@ TEST(Checkpoint, ContinuityDensitiesAndLoadsResumeBitIdentical) {
   expect_same_run(reference, resumed);
   ASSERT_EQ(resumed.loads.size(), reference.loads.size());
   for (std::size_t f = 0; f < reference.loads.size(); ++f) EXPECT_EQ(resumed.loads[f], reference.loads[f]) << "frame " << f;
+  EXPECT_EQ(resumed.sensors.pressure, reference.sensors.pressure);
+  EXPECT_GT(*std::max_element(reference.sensors.pressure.begin(), reference.sensors.pressure.end()), 0.0)
+      << "the water pushes on the floor";
 }
 
 // One InputError line containing `what`.

@@ -1,8 +1,11 @@
 // bw-measure: measurements on simulated frames, for validation and for users who
 // compare with experiments: dam-break front and residual height, pressure and
 // velocity probes, pressure sensors on solids' faces, loads on solids, wave gauges.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+
+#include <fmt/ranges.h>
 
 #include "analysis/dambreak.h"
 #include "analysis/measure.h"
@@ -32,6 +35,9 @@ struct Options {
   std::vector<double> gravity{0, 0, -9.81};
   // loads
   std::string solid;
+  // sensors
+  std::vector<std::string> names;
+  double window = 0;
 };
 
 // "NAME=x,y,z" or "x,y,z" (named S1, S2, ... by position).
@@ -144,6 +150,47 @@ int run_loads(const Options& o) {
   return bw::kExitOk;
 }
 
+// The pressure histories of the scene's [[sensor]]s from the run file's /sensors:
+// per sample, or averaged over windows of whole samples.
+int run_sensors(const Options& o) {
+  const bw::RunRecord run = bw::read_run(o.frames);
+  const bw::SensorRecord& r = run.sensors;
+  if (r.names.empty())
+    bw::fail_input("{}: holds no sensors; add [[sensor]] tables to the scene (docs/scene.md, \"Sensors\") and run it "
+                   "again",
+                   o.frames);
+  std::vector<std::size_t> chosen;
+  std::vector<std::string> columns{"time"};
+  const std::vector<std::string> wanted = o.names.empty() ? r.names : o.names;
+  for (const std::string& name : wanted) {
+    const auto it = std::find(r.names.begin(), r.names.end(), name);
+    if (it == r.names.end())
+      bw::fail_input("--sensor '{}': {} has no such sensor ({})", name, o.frames, fmt::join(r.names, ", "));
+    chosen.push_back(static_cast<std::size_t>(it - r.names.begin()));
+    columns.push_back(name);
+  }
+  std::size_t per = 1;
+  if (o.window > 0) {
+    const double ratio = o.window / r.interval;
+    per = static_cast<std::size_t>(std::llround(ratio));
+    if (per < 1 || std::abs(ratio - static_cast<double>(per)) > 1e-6 * ratio)
+      bw::fail_input("--window {}: not a whole number of the run's samples of {} s", o.window, r.interval);
+  }
+  const std::size_t ns = r.names.size();
+  std::vector<std::vector<double>> rows;
+  for (std::size_t k = 0; k + per <= r.samples(); k += per) {
+    std::vector<double> row{(static_cast<double>(k) + 0.5 * static_cast<double>(per)) * r.interval};
+    for (std::size_t c : chosen) {
+      double sum = 0;
+      for (std::size_t j = k; j < k + per; ++j) sum += r.pressure[j * ns + c];
+      row.push_back(sum / static_cast<double>(per));
+    }
+    rows.push_back(std::move(row));
+  }
+  print_rows(o, columns, rows, nullptr);
+  return bw::kExitOk;
+}
+
 int run_sensor(const Options& o) {
   const Eigen::Vector3d normal(o.normal[0], o.normal[1], o.normal[2]);
   if (!(normal.norm() > 0)) bw::fail_input("--normal: must not be zero");
@@ -185,7 +232,8 @@ int main(int argc, char** argv) {
                  "  bw-measure gauge out/frames --at 0.5,0.05 --radius 0.01 --json\n"
                  "  bw-measure sensor out/frames --at P1=0.8245,0.471,0.021 --at P2=0.8245,0.471,0.061 \\\n"
                  "      --normal 1,0,0 --radius 0.01 --h 0.04\n"
-                 "  bw-measure loads out/run.h5 --solid box\n");
+                 "  bw-measure loads out/run.h5 --solid box\n"
+                 "  bw-measure sensors out/run.h5 --sensor P1 --window 0.005\n");
   app.require_subcommand(1);
   Options o;
   auto frames_option = [&](CLI::App* sub) {
@@ -239,6 +287,16 @@ int main(int argc, char** argv) {
   loads->add_option("--solid", o.solid, "The solid's name (its [[solid]] name)")->required();
   loads->add_flag("--json", o.json, "Print JSON instead of CSV");
 
+  CLI::App* sensors = app.add_subcommand(
+      "sensors", "Pressure histories of the scene's [[sensor]]s, from the forces on the faces (Pa, from the run file)");
+  sensors->add_option("run", o.frames, "Run file (OUTDIR/run.h5 of bw-sim, of a scene with [[sensor]] tables)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sensors->add_option("--sensor", o.names, "A sensor's name; repeat for more (default: all)");
+  sensors->add_option("--window", o.window, "Average over windows of this many seconds, whole samples (default: each sample)")
+      ->check(bw::cli::kPositive);
+  sensors->add_flag("--json", o.json, "Print JSON instead of CSV");
+
   CLI::App* gauge = app.add_subcommand("gauge", "Free-surface elevation on a vertical line");
   frames_option(gauge);
   gauge->add_option("--at", o.point, "x,y of the gauge (m)")->required()->delimiter(',')->expected(2);
@@ -251,6 +309,7 @@ int main(int argc, char** argv) {
     if (probe->parsed()) return run_probe(o, false);
     if (sensor->parsed()) return run_sensor(o);
     if (loads->parsed()) return run_loads(o);
+    if (sensors->parsed()) return run_sensors(o);
     return run_probe(o, true);
   });
 }
