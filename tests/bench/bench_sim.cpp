@@ -20,6 +20,7 @@
 
 #include "cli/tool.h"
 #include "common/atomic_file.h"
+#include "common/error.h"
 #include "common/terminal.h"
 #include "common/text.h"
 #include "compute/device.h"
@@ -58,7 +59,7 @@ struct Result {
 // A dam break: a column n x n x 2n spacings against the end of a closed tank
 // 4n x n x 3n, spacing 1 cm, h = 2 spacings (~33 neighbours).
 Result run_case(const bw::compute::DeviceInfo& device, int n, bool profile, double simulate_seconds,
-               const std::string& density) {
+               const std::string& density, double diffusion) {
   bw::Stopwatch setup;
   bw::test::TempDir dir;
   const double s = 0.01;
@@ -69,6 +70,7 @@ Result run_case(const bw::compute::DeviceInfo& device, int n, bool profile, doub
                                       << "[[fluid.block]]\nmin = [0.01, 0.01, 0.01]\nmax = [" << n * s << ", " << n * s
                                       << ", " << 2 * n * s << "]\n[[solid]]\nparticles = \"tank.h5\"\n"
                                       << "[fluid]\ndensity = \"" << density << "\"\n";
+  if (diffusion >= 0) std::ofstream(dir.file("dam.toml"), std::ios::app) << "diffusion = " << diffusion << "\n";
   const bw::scene::Scene scene = bw::scene::load_scene(dir.file("dam.toml"));
   bw::sim::RunOptions options;
   options.output = dir.file("out");
@@ -171,6 +173,7 @@ int main(int argc, char** argv) {
   std::vector<double> counts;
   double profile_near = 120000, simulate = 0.25;
   std::string density = "summation";
+  double diffusion = -1;
   auto* quick_flag = app.add_flag("--quick", quick, "The 30 k case only");
   app.add_option("--sizes", counts, "Fluid particle counts to run, about (default 30000,120000,500000)")
       ->delimiter(',')
@@ -192,12 +195,18 @@ int main(int argc, char** argv) {
                  "profile's fluid_density row is then what the continuity equation and the diffusion cost)")
       ->check(CLI::IsMember({"summation", "continuity"}))
       ->capture_default_str();
+  app.add_option("--diffusion", diffusion,
+                 "fluid.diffusion (delta) with --density continuity (default: the scene's default); 0 against "
+                 "the default gives the diffusion term's own cost")
+      ->check(CLI::Range(0.0, 1.0));
   return bw::cli::run(app, argc, argv, [&]() -> int {
+    if (diffusion >= 0 && density != "continuity")
+      bw::fail_input("--diffusion {}: only with --density continuity (the summation has no diffusion)", diffusion);
     const bw::compute::DeviceInfo device = bw::compute::choose_device(device_choice);
     std::printf("bench-sim: %s, %d compute units, vector width %d; load average %s\n", device.label().c_str(),
                 device.compute_units, bw::compute::kernel_vector_width(device), load_average().c_str());
-    std::printf("dam break, spacing 1 cm, h = 2 spacings, %s density; rounds of 8 steps after 5 warm-up steps\n\n",
-                density.c_str());
+    std::printf("dam break, spacing 1 cm, h = 2 spacings, %s density%s; rounds of 8 steps after 5 warm-up steps\n\n",
+                density.c_str(), diffusion >= 0 ? fmt::format(", diffusion {}", diffusion).c_str() : "");
     std::vector<int> sizes = {25, 39, 63};
     if (quick) sizes = {25};
     if (!counts.empty()) {
@@ -214,7 +223,7 @@ int main(int argc, char** argv) {
     std::vector<Result> results;
     for (int n : sizes) {
       std::printf("column %d x %d x %d:\n", n, n, 2 * n);
-      const Result r = run_case(device, n, n == profiled, n == smallest ? simulate : 0.0, density);
+      const Result r = run_case(device, n, n == profiled, n == smallest ? simulate : 0.0, density, diffusion);
       std::printf("  %lld fluid + %lld boundary particles (set up in %.1f s)\n", static_cast<long long>(r.fluid),
                   static_cast<long long>(r.boundary), r.setup_seconds);
       std::printf("  particle-steps/s: best %s, median %s", bw::human_count(r.best).c_str(),
