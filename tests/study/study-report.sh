@@ -86,10 +86,12 @@ EOF
       function bold(text, on) { return on == 1 ? "**" text "**" : text }
       NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i
                 dam = ("front_rms" in col)
+                floor = ("floor_pressure" in col)
                 printf "| setting | spacing (m) | cfl | c0 (m/s) | particles | steps | wall time (s) | %s | worst density error |\n", \
                   dam ? "front RMS vs experiment (a) | after its delay dT | front RMS vs finest (a) | residual RMS (2a)" \
-                      : "pressure (Pa) | pressure error"
-                printf "|---|---|---|---|---|---|---|%s---|\n", dam ? "---|---|---|---|" : "---|---|"
+                      : floor ? "pressure (Pa) | pressure error | floor sensor (Pa) | floor sensor error" \
+                              : "pressure (Pa) | pressure error"
+                printf "|---|---|---|---|---|---|---|%s---|\n", dam ? "---|---|---|---|" : floor ? "---|---|---|---|" : "---|---|"
                 next }
       {
         if ($col["status"] != "complete") value = dam ? "stopped | | | " : "stopped | "
@@ -100,6 +102,9 @@ EOF
               bold(sprintf("%.3f", $col["front_vs_finest"]), $col["frontier_front_vs_finest"]), $col["residual_rms"])
         else value = sprintf("%.1f | %s", $col["pressure"], \
             bold(sprintf("%+.2f%%", 100 * $col["pressure_error"]), $col["frontier_pressure_error"]))
+        if (!dam && floor)
+          value = value (($col["status"] != "complete" || tolower($col["floor_pressure"]) ~ /nan/) ? " | | " : \
+            sprintf(" | %.1f | %+.2f%%", $col["floor_pressure"], 100 * $col["floor_error"]))
         printf "| %s | %g | %g | %.1f | %d | %d | %.1f | %s | %.2f%% |\n", $col["setting"], $col["spacing"], \
           $col["cfl"], $col["c0"], $col["fluid"], $col["steps"], $col["wall_time"], value, 100 * $col["density_error_worst"]
       }' "$2"

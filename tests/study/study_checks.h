@@ -7,6 +7,7 @@
 // A run folder is what bw-sim writes: RUN/run.h5 and RUN/frames/NNNNNN.h5.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,12 @@ struct HydrostaticError {
   double expected = 0;     // Pa: rho0 |g| (surface - point z)
   double relative = 0;     // pressure / expected - 1
   int frames = 0;          // frames averaged
+  // The scene's [[sensor]] named "floor" (the force on the floor's patches), averaged
+  // over the samples at or after `from`, against rho0 |g| (surface - its z); NaN
+  // when the scene has none.
+  double floor_pressure = std::numeric_limits<double>::quiet_NaN();
+  double floor_expected = std::numeric_limits<double>::quiet_NaN();
+  double floor_relative = std::numeric_limits<double>::quiet_NaN();
 };
 // The pressure at `point` (Shepard kernel average of radius `radius`, the same as
 // bw-measure probe) against rho0 g d, d the depth below the resting surface at

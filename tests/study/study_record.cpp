@@ -13,7 +13,9 @@
 //   residual_points, front_shift (the delay dT of the experiment behind the run that
 //   explains most of the front's error), front_rms_shifted (the RMS left after it)
 //   and front_vs_finest (the RMS difference from the front of --finest, NaN without);
-// hydrostatic: pressure, expected (Pa), pressure_error (relative), frames;
+// hydrostatic: pressure, expected (Pa), pressure_error (relative), frames, and the
+//   scene's floor sensor: floor_pressure, floor_expected (Pa), floor_error (relative;
+//   NaN without a [[sensor]] named floor);
 // stability: frames, nonfinite, outside_domain, inside_solids, verdict (stable;
 //   leaks: only particles crossing solids or leaving the domain, as --expect leaks
 //   allows; FAILED).
@@ -98,7 +100,7 @@ int main(int argc, char** argv) {
         std::printf("%s,front_rms,front_max,front_points,residual_rms,residual_points,front_shift,front_rms_shifted,"
                     "front_vs_finest\n",
                     kCommon);
-      if (hs->parsed()) std::printf("%s,pressure,expected,pressure_error,frames\n", kCommon);
+      if (hs->parsed()) std::printf("%s,pressure,expected,pressure_error,frames,floor_pressure,floor_expected,floor_error\n", kCommon);
       if (st->parsed()) std::printf("%s,frames,nonfinite,outside_domain,inside_solids,verdict\n", kCommon);
       return bw::kExitOk;
     }
@@ -134,7 +136,8 @@ int main(int argc, char** argv) {
       const auto e = bw::study::hydrostatic_error(run, {point[0], point[1], point[2]}, surface,
                                                   radius > 0 ? radius : r.h, start);
       print_common(r);
-      std::printf(",%.6g,%.6g,%.6g,%d\n", e.pressure, e.expected, e.relative, e.frames);
+      std::printf(",%.6g,%.6g,%.6g,%d,%.6g,%.6g,%.6g\n", e.pressure, e.expected, e.relative, e.frames, e.floor_pressure,
+                  e.floor_expected, e.floor_relative);
       return bw::kExitOk;
     }
     const auto report = bw::study::check_stability(run, limits);
