@@ -91,8 +91,11 @@ double mean_from(const SensorRecord& r, std::size_t sensor, double from) {
 // over the floor's area, the mean pressure on it. At this resolution (10 particles
 // across) the patches do not share the weight evenly: the middle carries less than a
 // ring 0.04 m out (a disc of radius 0.01 read -4.5%, one of 0.03 -3.4%, one of 0.04
-// -1.2%), and the middle's share drifts by 3% as the bottom layer settles. So the
-// small disc is held within 6% and the wide one, nearer the mean, within 3%. The
+// -1.2%), and the middle's share drifts as the bottom layer settles (-2.0% to -4.5%
+// over 1.0-1.5 s in runs that differ only in their frame rate, so in the last bits
+// of their steps). So the small disc is held within 8% (a patch area or a normal
+// gone wrong is a factor of 2 or a sign) and the wide one, nearer the mean, within
+// 3%. The
 // gradient between the walls' sensors: within 3% of rho0 g (measured -1.9%).
 TEST(Sensors, AFloorAndTwoWallsReadTheWaterAtRest) {
   test::TempDir dir;
@@ -120,7 +123,7 @@ TEST(Sensors, AFloorAndTwoWallsReadTheWaterAtRest) {
   test::figure("wall sensor 0.15 m deep", deep, "Pa");
   test::figure("wall sensor 0.05 m deep", shallow, "Pa");
   test::figure("gradient between the walls' sensors over rho0 g", (deep - shallow) / (kRho0 * kG * 0.1), "");
-  EXPECT_NEAR(floor / carried, 1.0, 0.06);
+  EXPECT_NEAR(floor / carried, 1.0, 0.08);
   EXPECT_NEAR(wide / carried, 1.0, 0.03);
   EXPECT_NEAR((deep - shallow) / (kRho0 * kG * 0.1), 1.0, 0.03);
 
