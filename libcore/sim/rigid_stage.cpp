@@ -543,6 +543,7 @@ void Solver::set_sensors(std::vector<SensorWeights> sensors, double interval) {
     return;
   }
   if (!(interval > 0)) fail_run("sensor interval {} s must be positive", interval);
+  if (s.steps > 0) fail_run("sensors are set before the first step (their samples count from t = 0)");
   measure_static_reactions(true);
   auto st = std::make_unique<SensorStage>();
   st->kernel = s.rigid->program.kernel("sensor_pressure");
@@ -571,7 +572,7 @@ void Solver::set_sensors(std::vector<SensorWeights> sensors, double interval) {
   }
   s.ctx.write_vector(st->normal, normal);
   st->interval = interval;
-  st->sample = static_cast<std::int64_t>(std::floor(s.t / interval + 1e-9));
+  st->sample = 0;
   st->partial.assign(sensors.size(), 0.0);
   st->sensors = std::move(sensors);
   s.sensors = std::move(st);

@@ -46,7 +46,7 @@ SensorWeights sensor_weights(const BoundarySet& b, const scene::Sensor& sensor, 
     if (!(sum.norm() > 0))
       fail_input("{}: no face of {} within h = {:.4g} m of at = ({:.4g}, {:.4g}, {:.4g}) (a sensor sits on a face "
                  "of a static solid)",
-                 where, sensor.solid < 0 ? std::string("a static solid") : fmt::format("its solid"), h,
+                 where, sensor.solid < 0 ? std::string("any static solid") : fmt::format("solid {}", sensor.solid), h,
                  sensor.at.x(), sensor.at.y(), sensor.at.z());
     out.normal = sum.normalized();
   }

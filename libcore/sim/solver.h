@@ -195,7 +195,8 @@ class Solver {
 
   // Pressure sensors (sim/sensors.h) from the next step on: each step's reading, from
   // the forces of that step, is averaged over samples of `interval` s, the k-th over
-  // [k, k + 1] x interval from t = 0. Measures the static reactions.
+  // [k, k + 1] x interval from t = 0; before the first step only (a resumed run's
+  // samples come from its checkpoint). Measures the static reactions.
   void set_sensors(std::vector<SensorWeights> sensors, double interval);
   // The sensors, and their completed samples (Pa), sample after sample, one value
   // per sensor each. Empty without sensors.
