@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -68,6 +69,19 @@ struct SensorRecord {
   double interval = 0;              // s
   std::vector<double> pressure;     // samples x sensors, sample-major
   std::size_t samples() const { return names.empty() ? 0 : pressure.size() / names.size(); }
+  // The mean of sensor `sensor`'s samples whose middle is at or after `from` (s), and
+  // how many there were (NaN and 0 when none).
+  double mean_from(std::size_t sensor, double from, int* count = nullptr) const {
+    double sum = 0;
+    int n = 0;
+    for (std::size_t k = 0; k < samples(); ++k)
+      if ((static_cast<double>(k) + 0.5) * interval >= from) {
+        sum += pressure[k * names.size() + sensor];
+        ++n;
+      }
+    if (count) *count = n;
+    return n ? sum / n : std::numeric_limits<double>::quiet_NaN();
+  }
 };
 
 struct RunRecord {

@@ -74,17 +74,6 @@ sensor_rate = {}
   return dir.file("column.toml");
 }
 
-double mean_from(const SensorRecord& r, std::size_t sensor, double from) {
-  double sum = 0;
-  int n = 0;
-  for (std::size_t k = 0; k < r.samples(); ++k)
-    if ((static_cast<double>(k) + 0.5) * r.interval >= from) {
-      sum += r.pressure[k * r.names.size() + sensor];
-      ++n;
-    }
-  return n ? sum / n : NAN;
-}
-
 // At rest the floor's patches carry the water above them and the walls the
 // hydrostatic pressure's gradient; averaged over the last 0.5 s. The floor's sensors
 // are held against the tank's own load over the same time (the run file's /loads)
@@ -110,8 +99,8 @@ TEST(Sensors, AFloorAndTwoWallsReadTheWaterAtRest) {
   EXPECT_EQ(r.radius[3], 0.0);
   for (std::int64_t p : r.particles) EXPECT_GT(p, 0);
 
-  const double floor = mean_from(r, 0, 1.0), wide = mean_from(r, 1, 1.0);
-  const double deep = mean_from(r, 2, 1.0), shallow = mean_from(r, 3, 1.0);
+  const double floor = r.mean_from(0, 1.0), wide = r.mean_from(1, 1.0);
+  const double deep = r.mean_from(2, 1.0), shallow = r.mean_from(3, 1.0);
   ASSERT_EQ(run.frames.size(), 31u);
   const double load = -(run.loads[30][0].z() - run.loads[20][0].z()) / (run.frames[30].time - run.frames[20].time);
   const double carried = load / (0.1 * 0.1);

@@ -243,15 +243,9 @@ HydrostaticError hydrostatic_error(const std::string& run_dir, const Vec3d& poin
   const SensorRecord& sensors = run.sensors;
   for (std::size_t k = 0; k < sensors.names.size(); ++k) {
     if (sensors.names[k] != "floor") continue;
-    double floor_sum = 0;
     int samples = 0;
-    for (std::size_t j = 0; j < sensors.samples(); ++j)
-      if ((static_cast<double>(j) + 0.5) * sensors.interval >= from) {
-        floor_sum += sensors.pressure[j * sensors.names.size() + k];
-        ++samples;
-      }
+    e.floor_pressure = sensors.mean_from(k, from, &samples);
     if (samples == 0) fail_input("{}: no sample of sensor 'floor' at or after t = {} s", path, from);
-    e.floor_pressure = floor_sum / samples;
     e.floor_expected = rho0 * scene.gravity.norm() * (surface - sensors.at[k].z());
     e.floor_relative = e.floor_pressure / e.floor_expected - 1;
   }
