@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -26,6 +27,16 @@ struct SampleGrid {
   std::uint64_t cell_count() const {
     return static_cast<std::uint64_t>(dims[0]) * static_cast<std::uint64_t>(dims[1]) *
            static_cast<std::uint64_t>(dims[2]);
+  }
+  // How far, in cells, a coordinate meant to lie on a cell plane (a face 0.2 m from the
+  // origin at a spacing of 0.01 m) may be off it: kPlaneSnap cells, plus what storing
+  // it and the origin in single precision can move them. Mesh readers (assimp among
+  // them) hand over float vertices: 0.8245 m as a float is 0.82450002, 1.3e-6 of a
+  // 0.02 m cell off the plane it was meant to lie on.
+  static constexpr double kPlaneSnap = 1e-6;
+  static constexpr double kFloatRounding = 0x1p-22;  // four times a float's half-ulp, relative
+  double plane_tolerance(double coordinate, int axis) const {
+    return kPlaneSnap + kFloatRounding * (std::abs(coordinate) + std::abs(origin[axis])) / spacing;
   }
 };
 

@@ -19,7 +19,7 @@ Vec3d to_grid_coordinates(const Vec3d& p, const SampleGrid& grid) {
   Vec3d t = (p - grid.origin) / grid.spacing;
   for (int k = 0; k < 3; ++k) {
     const double nearest = std::round(t[k]);
-    if (std::fabs(t[k] - nearest) <= kGridSnap) t[k] = nearest;
+    if (std::fabs(t[k] - nearest) <= grid.plane_tolerance(p[k], k)) t[k] = nearest;
   }
   return t;
 }
@@ -28,12 +28,12 @@ SampleGrid grid_for(const Aabb& bounds, double spacing) {
   SampleGrid grid;
   grid.origin = bounds.min;
   grid.spacing = spacing;
+  // The far faces in grid coordinates, snapped as every vertex is: a box of exactly n
+  // cells gets n, whichever way its corners rounded.
+  const Vec3d far = to_grid_coordinates(bounds.max, grid);
   for (int k = 0; k < 3; ++k) {
-    const double cells = std::ceil(bounds.extent()[k] / spacing);
-    auto n = static_cast<std::int64_t>(std::max(1.0, std::min(cells, kMaxCellsPerAxis)));
-    // Rounding may leave the far face a hair outside: add a cell then.
-    while (n < static_cast<std::int64_t>(kMaxCellsPerAxis) && grid.origin[k] + static_cast<double>(n) * spacing < bounds.max[k]) ++n;
-    grid.dims[k] = static_cast<std::int32_t>(n);
+    const double cells = std::ceil(far[k]);
+    grid.dims[k] = static_cast<std::int32_t>(std::max(1.0, std::min(cells, kMaxCellsPerAxis)));
   }
   return grid;
 }

@@ -29,10 +29,9 @@ struct SampleOptions {
 SampleGrid grid_for(const Aabb& bounds, double spacing);
 
 // Grid coordinates of a point: cell (i, j, k) spans [i, i+1] x [j, j+1] x [k, k+1].
-// A coordinate within kGridSnap of an integer is set to it, so that a face meant to
-// lie on a cell plane (0.2 m at a spacing of 0.01 m) does so exactly instead of
-// falling on either side by rounding.
-inline constexpr double kGridSnap = 1e-6;
+// A coordinate within SampleGrid::plane_tolerance of an integer is set to it, so that
+// a face meant to lie on a cell plane does so exactly instead of falling on either
+// side by rounding.
 Vec3d to_grid_coordinates(const Vec3d& p, const SampleGrid& grid);
 
 struct SampleEstimate {

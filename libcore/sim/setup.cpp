@@ -34,9 +34,6 @@ constexpr double kThinCell = 0.25;
 // Lattice counts are floor(length / spacing + this), so that a length of exactly n
 // spacings (up to rounding) gives n points.
 constexpr double kLatticeSlack = 1e-9;
-// A face within this fraction of a cell from a cell's plane lies on it (the
-// sampler's kGridSnap).
-constexpr double kCellPlaneSlack = 1e-6;
 // Contacts between bodies reach a contact distance of up to the widest solid
 // spacing plus a lateral reach (shaders/rigid.cl); the neighbour grid (cells of edge
 // h) must hold both, which h >= this many spacings allows.
@@ -342,7 +339,9 @@ std::vector<Vec3d> surface_normals(const SampledSolid& solid, std::vector<double
                                               static_cast<std::int32_t>(k)});
           // Faces on the cell's planes count (the cell is the surface cell the sampler
           // marked on their inner side), whatever the rounding of the planes.
-          const double inside = area_in_box(a, b, c, centre, half + Vec3d::Constant(kCellPlaneSlack * g.spacing));
+          Vec3d reach = half;
+          for (int d = 0; d < 3; ++d) reach[d] += g.spacing * g.plane_tolerance(centre[d] + half[d], d);
+          const double inside = area_in_box(a, b, c, centre, reach);
           const double whole = area_normal.norm();
           if (whole > 0 && inside > 0) {
             const std::size_t cell = static_cast<std::size_t>(it - keys.begin());

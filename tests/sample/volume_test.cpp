@@ -126,6 +126,26 @@ TEST(SurfaceSampling, FacesOnInnerCellPlanesStayOnTheSolidSide) {
   }
 }
 
+// A mesh read from a file comes with float vertices (assimp's): the SPHERIC box's
+// face at x = 0.8245 m is then 0.82450002, 1.3e-6 of a 0.02 m cell beyond the plane
+// 8 cells from its other face. Its particles still lie half a cell inside every face,
+// none in the water in front of it, and the grid has the box's 8 x 20 x 8 cells.
+TEST(SurfaceSampling, FacesOfAMeshInSinglePrecisionStayOnTheSolidSide) {
+  const Vec3d lo(0.6645, 0.297, 0), hi(0.8245, 0.697, 0.16);
+  auto box = bw::mesh::box(lo, hi);
+  for (auto& v : box.vertices) v = v.cast<float>().cast<double>();
+  const auto solid = sample_volume(box, 0.02);
+  EXPECT_EQ(solid.grid.dims, (bw::CellIndex{8, 20, 8}));
+  const Vec3d flo = lo.cast<float>().cast<double>(), fhi = hi.cast<float>().cast<double>();
+  for (const auto& p : solid.surface_positions()) {
+    for (int k = 0; k < 3; ++k) {
+      const double inside = std::min(p[k] - flo[k], fhi[k] - p[k]);
+      EXPECT_GT(inside, 0.009) << "axis " << k << ": particle at " << p.transpose();
+    }
+  }
+  EXPECT_EQ(solid.voxels.size(), 8u * 20u * 8u);
+}
+
 TEST(VolumeSampling, InsideOutMeshGivesTheSameVoxelsAndIsStoredFlipped) {
   auto mesh = bw::mesh::torus({0, 0, 0}, 0.6, 0.2, 64, 32);
   const auto right = sample_volume(mesh, 0.03);
