@@ -16,9 +16,19 @@
 #define BW_MIN_R2_FRACTION 1e-12f
 // The density diffusion's (0.1 h)^2, as Molteni & Colagrossi and DualSPHysics write it.
 #define BW_DIFFUSION_ETA2 0.01f
+// At rest the fluid next to a wall carries more density than the hydrostatic line,
+// which its boundary force (gamma2 = gamma1 / 2, p_i alone) needs: its excess over
+// rho0 is about (1 + BW_WALL_STEP phi) times the hydrostatic one, phi its boundary
+// fraction (fluid_density's diffusion; docs/scene.md, "Density").
+#define BW_WALL_STEP 3.0f
 
 // Non-finite test on the bits, immune to compiler options that assume finite math.
 static inline bool bw_finite(float v) { return (as_uint(v) & 0x7f800000u) != 0x7f800000u; }
+
+// A density with the wall layer's expected step taken out (BW_WALL_STEP): what the
+// diffusion compares between neighbours, so that the step survives it.
+// A macro, for one particle and for a vector of neighbours alike.
+#define BW_WALL_REDUCED(rho0, rho, phi) ((rho0) + ((rho) - (rho0)) / (1.0f + BW_WALL_STEP * (phi)))
 
 // Akinci's Psi_b = rho0 / sum_k W(x_bk), the sum over the boundary particles k of the
 // same owner, a static solid or a body (including b): the fluid mass a boundary
@@ -31,11 +41,54 @@ __kernel void boundary_psi(SimParams P, uint nb, __global const uint* bstart, __
   bpsi[i] = P.rho0 / bw_psi_sum(P, i, bstart, bx, by, bz, bsolid);
 }
 
+// The boundary fraction phi = sum_b Psi_b W_spiky(x_ib) / rho0 of every particle at
+// its current position, before fluid_density with the continuity equation, whose
+// diffusion reads it for each pair (there fluid_density leaves phi as it is).
+__kernel void fluid_wall_fraction(SimParams P, __global const uint* start, __global const float* x,
+                                  __global const float* y, __global const float* z, __global const uint* bstart,
+                                  __global const float* bx, __global const float* by, __global const float* bz,
+                                  __global const float* bpsi, __global float* phi) {
+  const uint i = get_global_id(0);
+  if (i >= start[P.ncells]) return;
+  const float xi = x[i], yi = y[i], zi = z[i];
+  const int cx = bw_cell_coord(xi, P.ox, P.inv_cell, P.nx);
+  const int cy = bw_cell_coord(yi, P.oy, P.inv_cell, P.ny);
+  const int cz = bw_cell_coord(zi, P.oz, P.inv_cell, P.nz);
+  const int x0 = max(cx - 1, 0), x1 = min(cx + 1, P.nx - 1);
+  const float h = P.h, h2 = P.h2;
+  vfloat wb = 0.0f;
+  for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
+    for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
+      const int row = bw_cell_index(0, gy, gz, P.nx, P.ny);
+      const int bs = (int)bstart[row + x0], be = (int)bstart[row + x1 + 1];
+      for (int j = bs; j < be; j += BW_VW) {
+        const vfloat dx = xi - VLOAD(bx + j), dy = yi - VLOAD(by + j), dz = zi - VLOAD(bz + j);
+        const vfloat r2 = dx * dx + dy * dy + dz * dz;
+        const vfloat q = h - sqrt(r2);
+        wb += select((vfloat)0.0f, VLOAD(bpsi + j) * q * q * q, (r2 < h2) & VIN_ROW(j, be));
+      }
+    }
+  }
+  phi[i] = P.spiky * VSUM(wb) / P.rho0;
+}
+
+// At t = 0 with the continuity equation (after fluid_wall_fraction): the blocks'
+// hydrostatic densities get the wall layer's step, rho0 + (1 + BW_WALL_STEP phi)
+// (rho - rho0), the state at rest that the diffusion leaves alone and the boundary
+// force needs, so that a pool against walls starts in balance.
+__kernel void fluid_wall_step(SimParams P, __global const uint* start, __global const float* phi,
+                              __global float* rho_state) {
+  const uint i = get_global_id(0);
+  if (i >= start[P.ncells]) return;
+  rho_state[i] = P.rho0 + (1.0f + BW_WALL_STEP * phi[i]) * (rho_state[i] - P.rho0);
+}
+
 // The density of every particle, then the Tait pressure, the per-particle factors the
 // force kernel reads, with the constants of its sums folded in (pterm = kp p / rho^2,
-// vol = kv / rho, below), and the boundary fraction phi = sum_b Psi_b W_spiky(x_ib) /
-// rho0 (1 on a wall's layer of particles, 0.15 one spacing from a flat wall, 0 far
-// from walls).
+// vol = kv / rho, below), and with the summation the boundary fraction phi = sum_b
+// Psi_b W_spiky(x_ib) / rho0 (1 on a wall's layer of particles, 0.15 one spacing from
+// a flat wall, 0 far from walls; with the continuity equation fluid_wall_fraction
+// writes it before).
 //
 // The density is the sum rho_i = m sum_j W(x_ij) + gamma1 sum_b Psi_b W(x_ib) with
 // W = W_spiky, or, with P.continuity (docs/scene.md, "Density"), the particle's own,
@@ -46,9 +99,17 @@ __kernel void boundary_psi(SimParams P, uint nb, __global const uint* bstart, __
 //   D_i = 2 delta h c0 sum_j (m / rho_j) (rho_j - rho_i - rho_H,ji) x_ji . grad W_ij / (r^2 + eta^2),
 // the Laplacian of the density less its hydrostatic part rho_H,ji = H.x_ji, so that a
 // pool at rest does not diffuse (boundary particles carry no density: no diffusion
-// with them). The rate is taken at the end of the step, from the positions and the
-// velocities the step gave: with symplectic Euler's v += a dt that pairs like x +=
-// v dt does, where a rate from the start of the step would pump the sound waves up.
+// with them). The densities it compares have the wall layer's step taken out,
+// rho0 + (rho - rho0) / (1 + BW_WALL_STEP phi), phi from fluid_wall_fraction: at
+// rest the layer against a wall carries more density than the hydrostatic line, which
+// its boundary force needs, and diffusing that step away lets the layer sink and the
+// column above it creep (docs/scene.md, "Density"); the pair's rate is multiplied by
+// 1 + BW_WALL_STEP (phi_i + phi_j) / 2, so that the layer's own fluctuations, which
+// the reduced densities show that much smaller, are damped as fast as the
+// interior's. The rate is taken at the end of
+// the step, from the positions and the velocities the step gave: with symplectic
+// Euler's v += a dt that pairs like x += v dt does, where a rate from the start of
+// the step would pump the sound waves up.
 __kernel void fluid_density(SimParams P, float dt, __global const uint* start, __global const float* x,
                             __global const float* y, __global const float* z, __global const float* vx,
                             __global const float* vy, __global const float* vz, __global const float* rho_state,
@@ -90,6 +151,7 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
   } else {
     const float vxi = vx[i], vyi = vy[i], vzi = vz[i];
     const float rhoi = rho_state[i];
+    const float phii = phi[i], rti = BW_WALL_REDUCED(P.rho0, rhoi, phii);
     const float min_r2 = h2 * BW_MIN_R2_FRACTION;  // keeps 1/r finite for the particle itself
     const float eta2 = BW_DIFFUSION_ETA2 * h2;
     vfloat sd = 0.0f, sb = 0.0f;  // drho/dt over -3 spiky: fluid (over m), boundary (over gamma1)
@@ -111,8 +173,10 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
           // The diffusion's weight x_ji . grad W / (r^2 + eta^2): spiky's gradient does not
           // vanish at r = 0, and without eta two close particles would diffuse without bound.
           const vfloat r = r2 * ir;
-          sd += select((vfloat)0.0f,
-                       q * q * (vij * ir + P.diffusion * r / (r2 + eta2) * (rhoi - rhoj - hyd) / rhoj), ok);
+          const vfloat phij = VLOAD(phi + j);
+          const vfloat rtj = BW_WALL_REDUCED(P.rho0, rhoj, phij);
+          const vfloat rate = P.diffusion * (1.0f + 0.5f * BW_WALL_STEP * (phii + phij)) * r / (r2 + eta2);
+          sd += select((vfloat)0.0f, q * q * (vij * ir + rate * (rti - rtj - hyd) / rhoj), ok);
         }
         const int bs = (int)bstart[row + x0], be = (int)bstart[row + x1 + 1];
         for (int j = bs; j < be; j += BW_VW) {
@@ -124,19 +188,17 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
           const vfloat psi = VLOAD(bpsi + j);
           const vfloat vib = (vxi - VLOAD(bvx + j)) * dx + (vyi - VLOAD(bvy + j)) * dy + (vzi - VLOAD(bvz + j)) * dz;
           sb += select((vfloat)0.0f, psi * q * q * ir * vib, ok);
-          wb += select((vfloat)0.0f, psi * q * q * q, ok);
         }
       }
     }
     r = rhoi - 3.0f * P.spiky * (P.kernel_mass * VSUM(sd) + P.gamma1 * VSUM(sb)) * dt;
   }
-  const float boundary = P.spiky * VSUM(wb);
   const float p = bw_tait(r, P.rho0, P.stiffness, P.gamma, P.gamma_int);
   rho[i] = r;
   pres[i] = p;
   pterm[i] = P.pressure_scale * p / (r * r);
   vol[i] = P.viscosity_scale / r;
-  phi[i] = boundary / P.rho0;
+  if (!P.continuity) phi[i] = P.spiky * VSUM(wb) / P.rho0;
 }
 
 // Accelerations (method.md 1 and 2.3; the pressure forces use the gradient of the

@@ -287,6 +287,7 @@ void Solver::load_state(const h5::Group& group) {
   s.outflow_energy = group.attr<double>("outflow_energy");
   s.next_id = group.attr<std::uint32_t>("next_id");
   s.capped = group.attr<std::int32_t>("capped") != 0;
+  s.wall_step_pending = false;  // the densities it carries have the step
   const h5::Group fluid = group.open_group("fluid");
   for (const Impl::StateBuffer& b : s.state_buffers()) {
     if (b.type == Impl::StateType::f32) ctx.write_vector(*b.buffer, read_exact<float>(fluid, b.name, n));

@@ -97,6 +97,8 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   s.neighbour_lists = s.grid_program.kernel("neighbour_lists");
   s.psi = s.fluid_program.kernel("boundary_psi");
   s.density = s.fluid_program.kernel("fluid_density");
+  s.wall_fraction = s.fluid_program.kernel("fluid_wall_fraction");
+  s.wall_step = s.fluid_program.kernel("fluid_wall_step");
   s.forces = s.fluid_program.kernel("fluid_forces");
   s.integrate = s.fluid_program.kernel("fluid_integrate");
   s.step_reduce = s.fluid_program.kernel("fluid_step_reduce");
@@ -148,6 +150,7 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   context.write_vector(s.rho,
                        setup.fluid_rho.size() == fluid.size() ? setup.fluid_rho
                                                               : std::vector<float>(fluid.size(), P.rho0));
+  s.wall_step_pending = P.continuity != 0;
   std::vector<std::uint32_t> ids(fluid.size());
   for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<std::uint32_t>(i);
   context.write_vector(s.id[0], ids);

@@ -130,7 +130,7 @@ struct Solver::Impl {
 
   compute::Program grid_program, fluid_program;
   Kernel fluid_keys, boundary_keys, cell_starts, reorder, gather_float, gather_uint, neighbour_lists;
-  Kernel psi, density, forces, integrate, step_reduce, frame_reduce, emit;
+  Kernel psi, wall_fraction, wall_step, density, forces, integrate, step_reduce, frame_reduce, emit;
   std::unique_ptr<compute::RadixSort> sort;
 
   // fluid
@@ -171,6 +171,9 @@ struct Solver::Impl {
   BoundarySet static_boundary;  // the static solids' particles as set up (unsorted)
   Buffer bflat;                 // sorted flatness of the boundary particles (with bodies only)
   std::vector<SolidMaterial> materials;
+  // The continuity equation's start: the wall layer's step goes into the densities
+  // before the first density pass (fluid_wall_step); a resumed run has it already.
+  bool wall_step_pending = false;
   bool boundary_dirty = false;  // bodies moved: sort the boundary again before the density
   // sensors: null unless the scene has some
   std::unique_ptr<SensorStage> sensors;
@@ -270,6 +273,13 @@ struct Solver::Impl {
     ctx.launch(cell_starts, std::size_t(n) + 1);
     density_dt = pending_dt;  // integrated once, whatever else sorts the particles again
     pending_dt = 0;
+    if (wall_step_pending && n > 0) {
+      wall_fraction.args(P, start, x[front], y[front], z[front], bstart, bx, by, bz, bpsi, phi);
+      ctx.launch(wall_fraction, n);
+      wall_step.args(P, start, phi, rho_state);
+      ctx.launch(wall_step, n);
+    }
+    wall_step_pending = false;
     launch_density(P);
     grid_valid = true;
   }
@@ -277,6 +287,10 @@ struct Solver::Impl {
   // The density kernel with parameters Q (P, or P with the summation for a check).
   void launch_density(const SimParams& Q) {
     const int f = front;
+    if (Q.continuity) {  // the diffusion reads every neighbour's phi
+      wall_fraction.args(Q, start, x[f], y[f], z[f], bstart, bx, by, bz, bpsi, phi);
+      ctx.launch(wall_fraction, n);
+    }
     density.args(Q, static_cast<float>(density_dt), start, x[f], y[f], z[f], vx[f], vy[f], vz[f], rho_state, bstart, bx,
                  by, bz, bpsi, bvx, bvy, bvz, rho, pres, pterm, vol, phi);
     ctx.launch(density, n);
