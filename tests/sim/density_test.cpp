@@ -69,6 +69,41 @@ std::map<std::uint32_t, std::pair<double, double>> densities(sim::Solver& solver
   return out;
 }
 
+// A pool 0.09 x 0.09 x 0.2 m in a tank of 10 x 10 x 24 cells (inner faces at 0 and
+// 0.11 m across), c0 = 20 m/s, with the [time] end, more [fluid] lines and the output
+// fields given.
+std::string write_pool(const test::TempDir& dir, double end, int frame_rate, const std::string& fluid,
+                       const std::string& fields) {
+  test::write_tank(dir.file("tank.h5"), Eigen::Vector3i(10, 10, 24), kSpacing);
+  std::ofstream(dir.file("pool.toml")) << fmt::format(R"(
+spacing = 0.01
+[time]
+end = {}
+frame_rate = {}
+[domain]
+min = [-0.05, -0.05, -0.05]
+max = [0.16, 0.16, 0.3]
+[fluid]
+c0 = 20
+density = "continuity"
+{}
+[[fluid.block]]
+min = [0.01, 0.01, 0.01]
+max = [0.10, 0.10, 0.21]
+[[solid]]
+particles = "tank.h5"
+[output]
+fields = [{}]
+)",
+                                                        end, frame_rate, fluid, fields);
+  return dir.file("pool.toml");
+}
+
+// Distance of particle i from the pool's nearest side wall (x or y).
+float side_distance(const FrameData& d, std::size_t i) {
+  return std::min({d.x[i], d.y[i], 0.11f - d.x[i], 0.11f - d.y[i]});
+}
+
 // Without diffusion, d rho / dt is the time derivative of the kernel sum (fluid and
 // boundary terms): over the first 0.05 s of the collapse, when the column's foot
 // compresses against the floor and the far wall, each particle's density changes as
@@ -110,41 +145,19 @@ TEST(Continuity, DensityChangesAsTheKernelSumDoes) {
 // the diffusion moves the corners by 0.6 kg/m^3.
 TEST(Continuity, DiffusionLeavesAHydrostaticPoolAlone) {
   test::TempDir dir;
-  const Eigen::Vector3i n(10, 10, 24);
-  test::write_tank(dir.file("tank.h5"), n, kSpacing);
   const double rho0 = 998, g = 9.81, c0 = 20, top = 0.21;
   auto hydrostatic = [&](double depth) { return rho0 * std::pow(1 + 7 * g * depth / (c0 * c0), 1.0 / 7); };
   double interior_error = 0, corner = 0;
   auto first_step = [&](double delta) {
-    std::ofstream(dir.file("pool.toml")) << fmt::format(R"(
-spacing = 0.01
-[time]
-end = 0.1
-frame_rate = 100
-[domain]
-min = [-0.05, -0.05, -0.05]
-max = [0.16, 0.16, 0.3]
-[fluid]
-c0 = 20
-density = "continuity"
-diffusion = {}
-[[fluid.block]]
-min = [0.01, 0.01, 0.01]
-max = [0.10, 0.10, 0.21]
-[[solid]]
-particles = "tank.h5"
-[output]
-fields = ["density", "id"]
-)",
-                                                        delta);
-    const scene::Scene scene = scene::load_scene(dir.file("pool.toml"));
+    const std::string pool = write_pool(dir, 0.1, 100, fmt::format("diffusion = {}", delta), "\"density\", \"id\"");
+    const scene::Scene scene = scene::load_scene(pool);
     sim::Solver solver(sim::prepare(scene, scene.time.end), context());
     FrameFields fields;
     fields.density = true;
     const FrameData d = solver.frame(fields, 0);
     for (std::size_t i = 0; i < d.fluid_count(); ++i) {
       // More than h from the walls' particles: no wall step.
-      const bool inside = std::min({d.x[i], d.y[i], 0.11f - d.x[i], 0.11f - d.y[i]}) > 0.04f && d.z[i] > 0.04f;
+      const bool inside = side_distance(d, i) > 0.04f && d.z[i] > 0.04f;
       if (inside) interior_error = std::max(interior_error, std::abs(d.rho[i] - hydrostatic(top - d.z[i])));
       corner = std::max(corner, double(d.rho[i]));
     }
@@ -177,29 +190,7 @@ fields = ["density", "id"]
 // moves 0.7% while the column settles under viscosity).
 TEST(Continuity, DiffusedColumnAtRestKeepsItsPressure) {
   test::TempDir dir;
-  test::write_tank(dir.file("tank.h5"), Eigen::Vector3i(10, 10, 24), kSpacing);
-  std::ofstream(dir.file("column.toml")) << R"(
-spacing = 0.01
-[time]
-end = 3.0
-frame_rate = 20
-[domain]
-min = [-0.05, -0.05, -0.05]
-max = [0.16, 0.16, 0.3]
-[fluid]
-c0 = 20
-mu = 0.5
-density = "continuity"
-diffusion = 0.1
-[[fluid.block]]
-min = [0.01, 0.01, 0.01]
-max = [0.10, 0.10, 0.21]
-[[solid]]
-particles = "tank.h5"
-[output]
-fields = ["pressure"]
-)";
-  const scene::Scene scene = scene::load_scene(dir.file("column.toml"));
+  const scene::Scene scene = scene::load_scene(write_pool(dir, 3.0, 20, "mu = 0.5\ndiffusion = 0.1", "\"pressure\""));
   sim::Solver solver(sim::prepare(scene, scene.time.end), context());
   FrameFields fields;
   fields.pressure = true;
@@ -209,7 +200,7 @@ fields = ["pressure"]
     double sum = 0;
     int count = 0;
     for (std::size_t i = 0; i < d.fluid_count(); ++i) {
-      const bool inner = std::min({d.x[i], d.y[i], 0.11f - d.x[i], 0.11f - d.y[i]}) > 0.03f;
+      const bool inner = side_distance(d, i) > 0.03f;
       if (inner && d.z[i] > 0.03f && d.z[i] < 0.1f) sum += d.p[i], ++count;
     }
     return sum / count;
