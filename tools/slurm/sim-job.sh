@@ -16,7 +16,15 @@ stopped=0
 # make and bw-sim in a process group of their own, so that one kill reaches both.
 setsid make -f Makefile.scenes "$@" &
 pid=$!
-trap 'stopped=1; echo "sim-job: SIGTERM at $(date -u +%FT%TZ): bw-sim finishes its frame and writes a checkpoint"; kill -TERM -- -$pid 2>/dev/null' TERM
+# Passed on once: bw-sim ends at once on a second SIGTERM, without its checkpoint, and
+# Slurm's early signal can meet a preemption or an scancel --signal.
+on_term() {
+  ((stopped)) && return
+  stopped=1
+  echo "sim-job: SIGTERM at $(date -u +%FT%TZ): bw-sim finishes its frame and writes a checkpoint"
+  kill -TERM -- -$pid 2>/dev/null
+}
+trap on_term TERM
 wait $pid; rc=$?
 while kill -0 $pid 2>/dev/null; do wait $pid; rc=$?; done
 # make may be gone before bw-sim: wait for the whole group.
