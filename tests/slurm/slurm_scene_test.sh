@@ -1,15 +1,14 @@
 #!/usr/bin/env bash
 # SCHEDULER=slurm for real: starts a single-node Slurm here (local-slurm.sh), runs a
 # reduced dam break (SPACING 0.005, 0.5 s, small images) through
-# `make -f Makefile.scenes dambreak SCHEDULER=slurm` with a simulation job of a
-# one-minute time limit that Slurm signals early (--signal=B:TERM@59), so that it is
-# stopped, requeues itself and resumes from its checkpoint at least once (where the
-# simulation is faster than Slurm's timer, the test sends the same signal to the
-# batch shell itself, scancel --batch --signal=TERM, once its first checkpoint is
-# written), and
-# compares every file with the same scene run here without Slurm: the particle
-# files, frames, images and video byte for byte, the run file but for its wall
-# times. Exits 77 (skipped, ctest SKIP_RETURN_CODE) only when Slurm cannot start.
+# `make -f Makefile.scenes dambreak SCHEDULER=slurm`, stops the simulation job's first
+# run once it has written its first checkpoint with the signal that sbatch
+# --signal=B:TERM@N has Slurm send before a time limit (scancel --batch
+# --signal=TERM, to the batch shell), so that the job requeues itself and resumes
+# from its checkpoint, and compares every file with the same scene run here without
+# Slurm: the particle files, frames, images and video byte for byte, the run file
+# but for its wall times. Exits 77 (skipped, ctest SKIP_RETURN_CODE) only when Slurm
+# cannot start.
 #
 #   tests/slurm/slurm_scene_test.sh SOURCE_DIR BUILD_DIR
 set -euo pipefail
@@ -45,7 +44,7 @@ mv "$tmp/out" "$tmp/local"
 say "local run: $((SECONDS - start)) s"
 
 start=$SECONDS
-make -s -C "$src" -f Makefile.scenes dambreak "${vars[@]}" OUT="$tmp/out" SCHEDULER=slurm SLURM_SIM_TIME=1 \
+make -s -C "$src" -f Makefile.scenes dambreak "${vars[@]}" OUT="$tmp/out" SCHEDULER=slurm SLURM_SIM_TIME=10 \
   SLURM_SIM_SIGNAL=59 SLURM_CHECKPOINT_EVERY=4 SLURM_TIME=10 SLURM_ARRAY_WIDTH=2 \
   SLURM_SBATCH="--cpus-per-task=1" | tee "$tmp/submit.log"
 jobs=$tmp/out/slurm/dambreak/jobs
@@ -57,13 +56,11 @@ state() { scontrol show job "$1" 2>/dev/null | grep -o 'JobState=[A-Z_]*' | cut 
 # next start: the credential lifetime, 10 s in local-slurm.sh's slurm.conf (120 s by
 # default). Starting it sooner (scontrol update StartTime=now) races the revocation of
 # its last run's credential, and slurmd kills the new run ("Job credential revoked").
-# Slurm sends the early signal at its first check after a start (within about 30 s)
-# when the limit is that near, so every run of a 1-minute job would be stopped after a
-# frame or two: once the job has been stopped and requeued, its limit is raised so
-# that the next run finishes. Slurm checks the limits every 30 s, and a fast machine
-# can finish the whole simulation sooner: the test then stops the first run itself,
-# as a preemption would, once that run has written its first checkpoint.
-raised= signalled=
+# The test sends the signal itself: Slurm checks time limits every 30 s, so a job
+# with a limit near enough to be signalled during a 15 s simulation can also be
+# signalled as it starts, before bw-sim has anything to checkpoint, and a limit too
+# far for that lets a fast machine finish first. The job's limit is 10 minutes.
+signalled=
 checkpoint=$tmp/out/$dir/checkpoint.h5
 while :; do
   s=$(state "$video")
@@ -75,9 +72,6 @@ while :; do
   if [[ -z $signalled && -e $checkpoint && $(state "$sim") == RUNNING ]] \
     && scontrol show job "$sim" | grep -q 'Restarts=0'; then
     scancel --batch --signal=TERM "$sim" && signalled=1 && say "signalled the first run after its first checkpoint"
-  fi
-  if [[ -z $raised && $(state "$sim") == PENDING ]] && scontrol show job "$sim" | grep -q 'Restarts=[1-9]'; then
-    scontrol update JobId="$sim" TimeLimit=10 >/dev/null 2>&1 && raised=1 signalled=1
   fi
   if [[ $(state "$sim") =~ ^(FAILED|CANCELLED|TIMEOUT)$ ]] || ((SECONDS - start > 300)); then
     say "simulation job $sim: $(state "$sim") after $((SECONDS - start)) s"; logs; exit 1
