@@ -73,14 +73,18 @@ int main(int argc, char** argv) {
     mesh::export_mesh(sealed_box({0, 0, 0}, {0.6, 0.1, 1.0}, 0.04), dir + "/sealed.obj");
     mesh::export_mesh(mesh::box({0, 0, 0}, {0.04, 0.1, 0.2}), dir + "/baffle.obj");
     mesh::export_mesh(mesh::box({0, 0, 0}, {0.01, 0.1, 0.2}), dir + "/sheet.obj");
-    // Scene 4: a flume for the flood among four houses: cavity 8 x 7 x 1.6 m, open
+    // Scene 4: a flume for the flood among four houses: cavity 8 x 8.4 x 1.6 m, open
     // at the top, walls 0.4 m thick, so that its inner faces lie on cell planes of
     // bw-sample's grid at the scene's spacings (0.1, 0.08, 0.05, 0.04, 0.025, 0.02,
     // 0.0125 m) and the flood's blocks and the houses sit on its floor; and the
-    // dividers that part it into four lanes of 1.6 m, one house in each, so that
-    // every house meets the same flood: 8 m long, 0.2 m thick, as high as the flume.
-    mesh::export_mesh(mesh::open_box({0, 0, 0}, {8.0, 7.0, 1.6}, 0.4), dir + "/flume.obj");
-    mesh::export_mesh(mesh::box({0, 0, 0}, {8.0, 0.2, 1.6}), dir + "/divider.obj");
+    // dividers, 8 m long, 0.4 m thick, as high as the flume, five of them every 2 m
+    // from its side walls in: four lanes of 1.6 m, one house in each, each between two
+    // dividers, so that every house meets the same flood (with the flume's own wall on
+    // one side the outer lanes' floods differed from the inner ones': walls sampled
+    // apart weigh differently where they meet the floor). 0.4 and 2 m are whole
+    // numbers of cells at every spacing above, so the lanes are copies of each other.
+    mesh::export_mesh(mesh::open_box({0, 0, 0}, {8.0, 8.4, 1.6}, 0.4), dir + "/flume.obj");
+    mesh::export_mesh(mesh::box({0, 0, 0}, {8.0, 0.4, 1.6}), dir + "/divider.obj");
     // SPHERIC Test 2 (examples/spheric2.toml): the closed MARIN tank, cavity 3.22 x 1 x 1 m,
     // walls 4 cm, and the box on its floor, 0.16 x 0.40 x 0.16 m with the face toward the
     // water at x = 0.8245 (the experiment's box is 0.161 x 0.403 x 0.161 m: these sizes put
