@@ -17,10 +17,11 @@
 // The density diffusion's (0.1 h)^2, as Molteni & Colagrossi and DualSPHysics write it.
 #define BW_DIFFUSION_ETA2 0.01f
 // At rest the fluid next to a wall carries more density than the hydrostatic line,
-// which its boundary force (gamma2 = gamma1 / 2, p_i alone) needs: its excess over
-// rho0 is about (1 + BW_WALL_STEP phi) times the hydrostatic one, phi its boundary
-// fraction (fluid_density's diffusion; docs/scene.md, "Density").
-#define BW_WALL_STEP 3.0f
+// which the mirrored wall's boundary force (gamma2 = gamma1 / 2, p_i alone) needs: its
+// excess over rho0 is about (1 + BW_WALL_STEP phi) times the hydrostatic one, phi its
+// boundary fraction (fluid_density's diffusion; docs/scene.md, "Density"). The
+// hydrostatic wall (sph_boundary.h) needs no step: 0.
+#define BW_WALL_STEP (P.wall_layer_step)
 
 // Non-finite test on the bits, immune to compiler options that assume finite math.
 static inline bool bw_finite(float v) { return (as_uint(v) & 0x7f800000u) != 0x7f800000u; }
@@ -221,11 +222,55 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
   if (!P.continuity) phi[i] = P.spiky * VSUM(wb) / P.rho0;
 }
 
+// The pressure a hydrostatic wall's boundary particle b holds (P.wall_hydrostatic),
+// Adami et al. 2012's extrapolation from the fluid around it,
+//   p_b = sum_f (p_f + rho_f g.(x_b - x_f)) W(x_bf) / sum_f W(x_bf)   (0 without fluid),
+// as the fluid's own pressure would continue into the wall (not below 0, like the
+// Tait law's), written as bpt_b = gamma2 kp p_b / (m_k rho0^2), its share of the
+// boundary force's c (sph_boundary.h). A field of the wall's own, the same for every
+// fluid particle near b: the force between b and f is then along x_bf and the
+// completion of f's neighbourhood the same on the fluid's side and the solid's.
+__kernel void boundary_pressure(SimParams P, uint nb, __global const uint* start, __global const float* x,
+                                __global const float* y, __global const float* z, __global const float* rho,
+                                __global const float* pres, __global const float* bx, __global const float* by,
+                                __global const float* bz, __global float* bpt) {
+  const uint i = get_global_id(0);
+  if (i >= nb) return;
+  const float xb = bx[i], yb = by[i], zb = bz[i];
+  const int cx = bw_cell_coord(xb, P.ox, P.inv_cell, P.nx);
+  const int cy = bw_cell_coord(yb, P.oy, P.inv_cell, P.ny);
+  const int cz = bw_cell_coord(zb, P.oz, P.inv_cell, P.nz);
+  const int x0 = max(cx - 1, 0), x1 = min(cx + 1, P.nx - 1);
+  const float h = P.h, h2 = P.h2;
+  vfloat sw = 0.0f, sp = 0.0f;
+  for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
+    for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
+      const int row = bw_cell_index(0, gy, gz, P.nx, P.ny);
+      const int s = (int)start[row + x0], e = (int)start[row + x1 + 1];
+      for (int j = s; j < e; j += BW_VW) {
+        const vfloat dx = VLOAD(x + j) - xb, dy = VLOAD(y + j) - yb, dz = VLOAD(z + j) - zb;
+        const vfloat r2 = dx * dx + dy * dy + dz * dz;
+        const vfloat q = h - sqrt(r2);
+        const vint ok = (r2 < h2) & VIN_ROW(j, e);
+        // g.(x_b - x_f) = -g.(x_f - x_b)
+        const vfloat pf = VLOAD(pres + j) - VLOAD(rho + j) * (P.gx * dx + P.gy * dy + P.gz * dz);
+        const vfloat w = select((vfloat)0.0f, q * q * q, ok);
+        sw += w;
+        sp += select((vfloat)0.0f, w * pf, ok);
+      }
+    }
+  }
+  const float w = VSUM(sw);
+  const float pb = w > 0.0f ? fmax(VSUM(sp) / w, 0.0f) : 0.0f;
+  bpt[i] = P.gamma2 / P.kernel_mass * P.pressure_scale * pb / (P.rho0 * P.rho0);
+}
+
 // Accelerations (method.md 1 and 2.3; the pressure forces use the gradient of the
 // density's kernel, W_spiky, docs/scene.md "Physics"):
 //   pressure   -m sum_j (p_i/rho_i^2 + p_j/rho_j^2) grad W_spiky(x_ij)
 //   viscosity  (mu/rho_i) sum_j m (v_j - v_i)/rho_j lap W_visc(x_ij)
-//   boundary   -gamma2 sum_b Psi_b (p_i/rho_i^2 + p_i/rho0^2) grad W_spiky(x_ib)
+//   boundary   -gamma2 sum_b Psi_b (p_i/rho_i^2 + p_b/rho0^2) grad W_spiky(x_ib), p_b = p_i (mirrored)
+//              or the wall's own (P.wall_hydrostatic, boundary_pressure)
 //   friction   (mu_b/rho_i) sum_b (Psi_b/rho0) (v_b - v_i) lap W_visc(x_ib)
 //   gravity    g
 // with grad W_spiky(x) = -3 spiky (h - r)^2 x / r and lap W_visc = visc (h - r). A particle in contact with a wall
@@ -236,8 +281,9 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
                            __global const float* vy, __global const float* vz, __global const float* rho,
                            __global const float* pterm, __global const float* vol, __global const uint* bstart,
                            __global const float* bx, __global const float* by, __global const float* bz,
-                           __global const float* bpsi, __global const float* bvx, __global const float* bvy,
-                           __global const float* bvz, __global float* ax, __global float* ay, __global float* az) {
+                           __global const float* bpsi, __global const float* bpt, __global const float* bvx,
+                           __global const float* bvy, __global const float* bvz, __global float* ax,
+                           __global float* ay, __global float* az) {
   const uint i = get_global_id(0);
   if (i >= start[P.ncells]) return;
   const float xi = x[i], yi = y[i], zi = z[i];
@@ -247,7 +293,7 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
   const float inv_rhoi = 1.0f / rhoi;
   // The boundary terms' own factors, per particle: pressure (gamma2, mirrored p_i)
   // and friction (mu_b), scaled like the fluid terms so that one sum holds all.
-  const float kb = P.gamma2 / (P.kernel_mass * P.rho0 * P.rho0) * (pti * P.rho0 * P.rho0 + pti * rhoi * rhoi);
+  const float kb = bw_boundary_kb(P, pti, rhoi);
   const float kf = P.mu_b * P.visc / P.rho0 * inv_rhoi;
   const int cx = bw_cell_coord(xi, P.ox, P.inv_cell, P.nx);
   const int cy = bw_cell_coord(yi, P.oy, P.inv_cell, P.ny);
@@ -282,7 +328,8 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
         const vfloat psi = VLOAD(bpsi + j);
         const vfloat ir = bw_rsqrt(fmax(r2, min_r2));
         const vfloat q = h - r2 * ir;
-        const vfloat c = select((vfloat)0.0f, kb * psi * q * q * ir, ok);
+        const vfloat kbj = P.wall_hydrostatic ? kb + VLOAD(bpt + j) : (vfloat)kb;
+        const vfloat c = select((vfloat)0.0f, kbj * psi * q * q * ir, ok);
         const vfloat w = select((vfloat)0.0f, kf * psi * q, ok);
         sx += c * dx + w * (VLOAD(bvx + j) - vxi);
         sy += c * dy + w * (VLOAD(bvy + j) - vyi);

@@ -20,7 +20,8 @@ __kernel void fracture_load(SimParams P, uint count, float dt, float decay, __gl
                             __global const uint* rank, __global const uint* start, __global const float* x,
                             __global const float* y, __global const float* z, __global const float* rho,
                             __global const float* pterm, __global const float* bx, __global const float* by,
-                            __global const float* bz, __global const float* bpsi, __global const float* binding,
+                            __global const float* bz, __global const float* bpsi, __global const float* bpt,
+                            __global const float* binding,
                             __global float* dvx, __global float* dvy, __global float* dvz, __global float* energy,
                             __global float* strength) {
   const uint g = get_global_id(0);
@@ -28,6 +29,8 @@ __kernel void fracture_load(SimParams P, uint count, float dt, float decay, __gl
   const uint i = rank[map[g]];
   const float xb = bx[i], yb = by[i], zb = bz[i];
   const float psi = bpsi[i];
+  // fluid_forces adds the wall's own pressure term, b's for every fluid particle
+  const float bpti = P.wall_hydrostatic ? bpt[i] : 0.0f;
   const int cx = bw_cell_coord(xb, P.ox, P.inv_cell, P.nx);
   const int cy = bw_cell_coord(yb, P.oy, P.inv_cell, P.ny);
   const int cz = bw_cell_coord(zb, P.oz, P.inv_cell, P.nz);
@@ -47,10 +50,10 @@ __kernel void fracture_load(SimParams P, uint count, float dt, float decay, __gl
           // rigid.cl boundary_forces: the pressure part of the boundary term of j
           const float ptj = pterm[j];
           const float rhoj = rho[j];
-          const float kb = P.gamma2 / (P.kernel_mass * P.rho0 * P.rho0) * (ptj * P.rho0 * P.rho0 + ptj * rhoj * rhoj);
+          const float kbb = bw_boundary_kb(P, ptj, rhoj) + bpti;
           const float ir = bw_rsqrt1(fmax(r2, min_r2));
           const float q = h - r2 * ir;
-          const float c = kb * psi * q * q * ir;
+          const float c = kbb * psi * q * q * ir;
           sx += c * dx;
           sy += c * dy;
           sz += c * dz;

@@ -189,7 +189,8 @@ __kernel void boundary_forces(SimParams P, ContactParams C, uint first, uint cou
                               __global const float* bx, __global const float* by, __global const float* bz,
                               __global const float* bvx, __global const float* bvy, __global const float* bvz,
                               __global const float* bnx, __global const float* bny, __global const float* bnz,
-                              __global const float* bflat, __global const float* bpsi, __global const uint* bsolid,
+                              __global const float* bflat, __global const float* bpsi, __global const float* bpt,
+                              __global const uint* bsolid,
                               __global const uint* rank, __global const uint* order, __global const OwnerParams* owners,
                               __global const uint* wet_in, __global float* fx, __global float* fy, __global float* fz,
                               __global float* tx, __global float* ty, __global float* tz, __global float* touching,
@@ -203,6 +204,8 @@ __kernel void boundary_forces(SimParams P, ContactParams C, uint first, uint cou
   const float nbx = bnx[i], nby = bny[i], nbz = bnz[i];
   const bool bface = bflat[i] >= BW_FACE_FLATNESS;
   const float psi = bpsi[i];
+  // fluid_forces adds the wall's own pressure term, b's for every fluid particle
+  const float bpti = P.wall_hydrostatic ? bpt[i] : 0.0f;
   const uint owner = bsolid[i];
   const OwnerParams own = owners[owner];
   const int cx = bw_cell_coord(xb, P.ox, P.inv_cell, P.nx);
@@ -232,11 +235,11 @@ __kernel void boundary_forces(SimParams P, ContactParams C, uint first, uint cou
           // fluid_forces, the boundary term of particle j
           const float ptj = pterm[j];
           const float rhoj = rho[j];
-          const float kb = P.gamma2 / (P.kernel_mass * P.rho0 * P.rho0) * (ptj * P.rho0 * P.rho0 + ptj * rhoj * rhoj);
+          const float kbb = bw_boundary_kb(P, ptj, rhoj) + bpti;
           const float kf = P.mu_b * P.visc / P.rho0 * (1.0f / rhoj);
           const float ir = bw_rsqrt1(fmax(r2, min_r2));
           const float q = h - r2 * ir;
-          const float c = kb * psi * q * q * ir;
+          const float c = kbb * psi * q * q * ir;
           const float w = kf * psi * q;
           sx += c * dx + w * (vbx - vx[j]);
           sy += c * dy + w * (vby - vy[j]);

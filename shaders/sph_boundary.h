@@ -21,6 +21,18 @@ static inline float bw_rsqrt1(float x) {
   return y;
 }
 
+// The boundary pressure force on fluid particle f from boundary particle b is
+// c Psi_b (h - r)^2 / r (x_f - x_b), c = gamma2 (p_f / rho_f^2 + p_b / rho0^2) / m_k in
+// pterm's units (pt = kp p_f / rho_f^2): bw_boundary_kb(pt_f, rho_f) + bpt_b, with
+// bpt_b = 0 for a mirrored wall, whose p_b is p_f (kb holds both halves), and for a
+// hydrostatic one the pressure b holds (boundary_pressure, fluid.cl), so that the layer
+// next to a wall is held up as the fluid below it would hold it. Every kernel that
+// applies or gathers the force uses these.
+static inline float bw_boundary_kb(SimParams P, float pt, float rho) {
+  return P.wall_hydrostatic ? P.gamma2 / P.kernel_mass * pt
+                            : P.gamma2 / (P.kernel_mass * P.rho0 * P.rho0) * (pt * P.rho0 * P.rho0 + pt * rho * rho);
+}
+
 // Akinci's sum_k W_spiky(x_bk) over the boundary particles k of b's owner around the
 // sorted boundary particle i (Psi_b = rho0 / the sum).
 static inline float bw_psi_sum(SimParams P, uint i, __global const uint* bstart, __global const float* bx,

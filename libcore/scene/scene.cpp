@@ -369,6 +369,15 @@ void read_fluid(Reader& top, Scene& s) {
     if (f.density == DensityScheme::summation && f.diffusion > 0)
       r.fail("diffusion", "density diffusion needs fluid.density = \"continuity\"; set it to 0 with \"summation\"");
   }
+  if (r.has("wall_pressure")) {
+    const std::string wall = r.string("wall_pressure", "mirrored");
+    if (wall == "hydrostatic") f.wall_pressure = WallPressure::hydrostatic;
+    else if (wall == "mirrored") f.wall_pressure = WallPressure::mirrored;
+    else r.fail("wall_pressure", fmt::format("\"{}\" is not a wall pressure: \"mirrored\" or \"hydrostatic\"", wall));
+    // Measured: with the summation the layer against a wall leaks through it.
+    if (f.wall_pressure == WallPressure::hydrostatic && f.density == DensityScheme::summation)
+      r.fail("wall_pressure", "the hydrostatic wall pressure needs fluid.density = \"continuity\"");
+  }
   if (r.has("max_particles")) {
     f.max_particles = r.integer("max_particles", 0);
     if (f.max_particles < 1) r.fail("max_particles", fmt::format("{} must be at least 1", f.max_particles));

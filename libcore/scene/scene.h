@@ -30,6 +30,9 @@ struct TimeSettings {
 
 // How the fluid's density is found (docs/scene.md, "Density").
 enum class DensityScheme { continuity, summation };
+// The pressure a boundary particle stands for in the boundary force (docs/scene.md,
+// "Density"): the fluid particle's own, or that plus its hydrostatic rise.
+enum class WallPressure { mirrored, hydrostatic };
 
 struct FluidSettings {
   double rho0 = 998;           // kg/m^3
@@ -40,10 +43,12 @@ struct FluidSettings {
   double mu_b = 0.05;          // boundary friction (Pa s); default: mu
   double gamma1 = -1;          // weight of the boundary term in the density; < 0: calibrated
                                // so that fluid one spacing from a flat wall has rho0
-  double gamma2 = -1;          // weight of the boundary pressure force; < 0: gamma1 / 2
+  double gamma2 = -1;          // weight of the boundary pressure force; < 0: gamma1 / 2, or gamma1
+                               // with the hydrostatic wall pressure
   std::int64_t max_particles = 0;  // MFP; 0 = what the blocks and emitters need
   DensityScheme density = DensityScheme::summation;
   double diffusion = 0.1;      // delta of the density diffusion (continuity only); 0: none
+  WallPressure wall_pressure = WallPressure::mirrored;  // hydrostatic: continuity only
 };
 
 // A box filled with fluid particles on a cubic lattice of the scene's spacing:

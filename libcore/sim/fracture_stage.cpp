@@ -149,7 +149,7 @@ void Solver::Impl::fracture_load(double dt) {
   const float decay = static_cast<float>(std::exp(-dt / fs.settings.window));
   const int f = front;
   fs.load.args(P, fs.slots, static_cast<float>(dt), decay, fs.map, rigid->rank, start, x[f], y[f], z[f], rho, pterm,
-               bx, by, bz, bpsi, fs.binding, fs.dvx, fs.dvy, fs.dvz, fs.energy, fs.strength);
+               bx, by, bz, bpsi, bpt, fs.binding, fs.dvx, fs.dvy, fs.dvz, fs.energy, fs.strength);
   ctx.launch(fs.load, fs.slots);
 }
 

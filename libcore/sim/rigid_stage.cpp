@@ -182,6 +182,7 @@ void Solver::Impl::upload_layout() {
     by = floats(cap, "boundary y");
     bz = floats(cap, "boundary z");
     bpsi = floats(cap, "boundary psi");
+    bpt = floats(cap, "boundary pressure term");
     bvx = floats(cap, "boundary vx");
     bvy = floats(cap, "boundary vy");
     bvz = floats(cap, "boundary vz");
@@ -379,7 +380,7 @@ void Solver::Impl::rigid_forces(double dt) {
   const int f = front;
   const int w = r.wet_read;
   r.forces.args(P, C, first, count, static_cast<float>(dt), start, x[f], y[f], z[f], vx[f], vy[f], vz[f], ax, ay, az,
-                rho, pterm, phi, hold[f], bstart, bx, by, bz, bvx, bvy, bvz, bnx, bny, bnz, bflat, bpsi, bsolid,
+                rho, pterm, phi, hold[f], bstart, bx, by, bz, bvx, bvy, bvz, bnx, bny, bnz, bflat, bpsi, bpt, bsolid,
                 r.rank, r.order, r.owners, r.wet[static_cast<std::size_t>(w)], r.fx, r.fy, r.fz, r.tx, r.ty, r.tz,
                 r.touching, r.wet[static_cast<std::size_t>(1 - w)]);
   ctx.launch(r.forces, count);

@@ -71,6 +71,10 @@ struct Parameters {
   // the kernel sum over neighbours (continuity false).
   bool continuity = false;
   double diffusion = 0.1;
+  // The pressure a boundary particle stands for in the boundary force: the fluid
+  // particle's own (mirrored), or that plus its hydrostatic rise to the boundary
+  // particle (sph_boundary.h; continuity only).
+  bool wall_hydrostatic = false;
 };
 
 // Particles in structure-of-arrays form (float, what the device computes in).

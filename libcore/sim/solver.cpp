@@ -50,6 +50,8 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   P.mu_b = static_cast<float>(p.mu_b);
   P.gamma1 = static_cast<float>(p.gamma1);
   P.gamma2 = static_cast<float>(p.gamma2);
+  P.wall_hydrostatic = p.wall_hydrostatic ? 1 : 0;
+  P.wall_layer_step = static_cast<float>(p.wall_hydrostatic ? 0.0 : kMirroredWallStep);
   P.continuity = p.continuity ? 1 : 0;
   P.diffusion = static_cast<float>(p.continuity ? 2.0 * p.diffusion * p.h * p.c0 : 0.0);
   const Vec3d hydrostatic = p.rho0 * p.rho0 / (p.gamma * p.k) * p.gravity;
@@ -98,6 +100,7 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   s.psi = s.fluid_program.kernel("boundary_psi");
   s.density = s.fluid_program.kernel("fluid_density");
   s.wall_fraction = s.fluid_program.kernel("fluid_wall_fraction");
+  s.boundary_pressure = s.fluid_program.kernel("boundary_pressure");
   s.wall_step = s.fluid_program.kernel("fluid_wall_step");
   s.forces = s.fluid_program.kernel("fluid_forces");
   s.integrate = s.fluid_program.kernel("fluid_integrate");
@@ -165,6 +168,7 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   s.by = s.floats(nb, "boundary y");
   s.bz = s.floats(nb, "boundary z");
   s.bpsi = s.floats(nb, "boundary psi");
+  s.bpt = s.floats(nb, "boundary pressure term");
   s.bvx = s.floats(nb, "boundary vx");
   s.bvy = s.floats(nb, "boundary vy");
   s.bvz = s.floats(nb, "boundary vz");
@@ -380,7 +384,7 @@ std::uint64_t Solver::device_bytes() const {
     total += s.x[k].bytes() + s.y[k].bytes() + s.z[k].bytes() + s.vx[k].bytes() + s.vy[k].bytes() + s.vz[k].bytes() +
              s.id[k].bytes() + s.hold[k].bytes();
   for (const Buffer* b : {&s.keys, &s.values, &s.keys_tmp, &s.values_tmp, &s.rho, &s.pres, &s.pterm, &s.vol, &s.phi, &s.ax,
-                          &s.ay, &s.az, &s.rho_state, &s.start, &s.bx, &s.by, &s.bz, &s.bpsi, &s.bvx, &s.bvy, &s.bvz, &s.bnx, &s.bny, &s.bnz, &s.bsolid,
+                          &s.ay, &s.az, &s.rho_state, &s.start, &s.bx, &s.by, &s.bz, &s.bpsi, &s.bpt, &s.bvx, &s.bvy, &s.bvz, &s.bnx, &s.bny, &s.bnz, &s.bsolid,
                           &s.bstart, &s.step_out, &s.frame_out, &s.ex, &s.ey, &s.ez, &s.emitter_table})
     total += b->bytes();
   return total + s.sort->scratch_bytes() + s.rigid_bytes() + s.bflat.bytes() + s.fracture_bytes();

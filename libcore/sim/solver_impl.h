@@ -52,6 +52,10 @@ inline constexpr std::uint64_t kMaxCells = std::uint64_t{1} << 30;
 // edge's nearest face particles are 1.5 spacings from the fluid beside it).
 inline constexpr double kContactDistance = 0.6;
 inline constexpr double kPatchRadius = 1.0;
+// The density step of the fluid layer against a mirrored wall, in hydrostatic
+// excesses per unit of boundary fraction (fluid.cl, BW_WALL_STEP): what its boundary
+// force, half the missing fluid's at the same pressure, needs to hold the column up.
+inline constexpr double kMirroredWallStep = 3.0;
 // A step shorter than this fraction of the proposed dt before a frame time would be
 // a sliver: the last two steps share the remaining time instead.
 inline constexpr double kSplitBeforeFrame = 2.0;
@@ -130,7 +134,7 @@ struct Solver::Impl {
 
   compute::Program grid_program, fluid_program;
   Kernel fluid_keys, boundary_keys, cell_starts, reorder, gather_float, gather_uint, neighbour_lists;
-  Kernel psi, wall_fraction, wall_step, density, forces, integrate, step_reduce, frame_reduce, emit;
+  Kernel psi, wall_fraction, boundary_pressure, wall_step, density, forces, integrate, step_reduce, frame_reduce, emit;
   std::unique_ptr<compute::RadixSort> sort;
 
   // fluid
@@ -144,7 +148,7 @@ struct Solver::Impl {
   double pending_dt = 0;   // the step taken since the density was last integrated
   double density_dt = 0;   // the step the last density launch integrated
   // boundary
-  Buffer bx, by, bz, bpsi, bvx, bvy, bvz, bnx, bny, bnz, bsolid, bstart;
+  Buffer bx, by, bz, bpsi, bpt, bvx, bvy, bvz, bnx, bny, bnz, bsolid, bstart;
   std::uint32_t nb = 0;
   ParticleArrays boundary_host;
   // reductions
@@ -294,12 +298,16 @@ struct Solver::Impl {
     density.args(Q, static_cast<float>(density_dt), start, x[f], y[f], z[f], vx[f], vy[f], vz[f], rho_state, bstart, bx,
                  by, bz, bpsi, bvx, bvy, bvz, rho, pres, pterm, vol, phi);
     ctx.launch(density, n);
+    if (Q.wall_hydrostatic && nb > 0) {  // the walls' pressures, from the fluid's just found
+      boundary_pressure.args(Q, nb, start, x[f], y[f], z[f], rho, pres, bx, by, bz, bpt);
+      ctx.launch(boundary_pressure, nb);
+    }
   }
 
   void launch_forces() {
     const int f = front;
-    forces.args(P, start, x[f], y[f], z[f], vx[f], vy[f], vz[f], rho, pterm, vol, bstart, bx, by, bz, bpsi, bvx, bvy,
-                bvz, ax, ay, az);
+    forces.args(P, start, x[f], y[f], z[f], vx[f], vy[f], vz[f], rho, pterm, vol, bstart, bx, by, bz, bpsi, bpt, bvx,
+                bvy, bvz, ax, ay, az);
     ctx.launch(forces, n);
   }
 

@@ -200,6 +200,14 @@ TEST(Scene, DensitySchemeAndLoads) {
   expect_error(f, kMinimal + "[fluid]\ndensity = \"riemann\"\n", "fluid.density: \"riemann\" is not a density scheme");
   expect_error(f, kMinimal + "[fluid]\ndensity = \"continuity\"\ndiffusion = 2\n", "fluid.diffusion: 2 must be between 0");
   expect_error(f, kMinimal + "[fluid]\ndiffusion = 0.1\n", "fluid.diffusion: density diffusion needs fluid.density = \"continuity\"");
+  EXPECT_EQ(s.fluid.wall_pressure, bw::scene::WallPressure::mirrored);
+  const Scene w =
+      load_scene(f.write(kMinimal + "[fluid]\ndensity = \"continuity\"\nwall_pressure = \"hydrostatic\"\n"));
+  EXPECT_EQ(w.fluid.wall_pressure, bw::scene::WallPressure::hydrostatic);
+  expect_error(f, kMinimal + "[fluid]\ndensity = \"continuity\"\nwall_pressure = \"adami\"\n",
+               "fluid.wall_pressure: \"adami\" is not a wall pressure");
+  expect_error(f, kMinimal + "[fluid]\nwall_pressure = \"hydrostatic\"\n",
+               "fluid.wall_pressure: the hydrostatic wall pressure needs fluid.density = \"continuity\"");
   expect_error(f, kMinimal + "[output]\nloads = 1\n", "output.loads: expected true or false");
 }
 
