@@ -48,7 +48,7 @@ typedef struct {
   float mu_b;       // boundary friction (Pa s)
   float gamma1;     // weight of the boundary term in the density
   float gamma2;     // weight of the boundary pressure force
-  int wall_hydrostatic;   // 1: a boundary particle mirrors p_i plus its hydrostatic rise (sph_boundary.h)
+  int wall_hydrostatic;   // 1: a boundary particle holds the fluid's extrapolated pressure (boundary_pressure)
   float wall_layer_step;  // the wall layer's density step with the continuity equation (fluid.cl, BW_WALL_STEP)
   // density (docs/scene.md, "Density"): 1 integrates the continuity equation with
   // Fourtakas et al. 2019's density diffusion, 0 sums the kernel over neighbours

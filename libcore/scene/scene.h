@@ -31,7 +31,7 @@ struct TimeSettings {
 // How the fluid's density is found (docs/scene.md, "Density").
 enum class DensityScheme { continuity, summation };
 // The pressure a boundary particle stands for in the boundary force (docs/scene.md,
-// "Density"): the fluid particle's own, or that plus its hydrostatic rise.
+// "Density"): the fluid particle's own, or the wall's own, extrapolated from the fluid.
 enum class WallPressure { mirrored, hydrostatic };
 
 struct FluidSettings {

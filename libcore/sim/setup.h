@@ -72,8 +72,8 @@ struct Parameters {
   bool continuity = false;
   double diffusion = 0.1;
   // The pressure a boundary particle stands for in the boundary force: the fluid
-  // particle's own (mirrored), or that plus its hydrostatic rise to the boundary
-  // particle (sph_boundary.h; continuity only).
+  // particle's own (mirrored), or the boundary particle's own, extrapolated from the
+  // fluid around it (fluid.cl, boundary_pressure; continuity only).
   bool wall_hydrostatic = false;
 };
 
