@@ -228,8 +228,8 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
 // as the fluid's own pressure would continue into the wall (not below 0, like the
 // Tait law's), written as bpt_b = gamma2 kp p_b / (m_k rho0^2), its share of the
 // boundary force's c (sph_boundary.h). A field of the wall's own, the same for every
-// fluid particle near b: the force between b and f is then along x_bf and the
-// completion of f's neighbourhood the same on the fluid's side and the solid's.
+// fluid particle near b up to the bound bw_wall_term sets per pair: the force between
+// b and f is then along x_bf and the same on the fluid's side and the solid's.
 __kernel void boundary_pressure(SimParams P, uint nb, __global const uint* start, __global const float* x,
                                 __global const float* y, __global const float* z, __global const float* rho,
                                 __global const float* pres, __global const float* bx, __global const float* by,
@@ -294,6 +294,7 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
   // The boundary terms' own factors, per particle: pressure (gamma2, mirrored p_i)
   // and friction (mu_b), scaled like the fluid terms so that one sum holds all.
   const float kb = bw_boundary_kb(P, pti, rhoi);
+  const float2 cap = bw_wall_cap(P, pti, rhoi);
   const float kf = P.mu_b * P.visc / P.rho0 * inv_rhoi;
   const int cx = bw_cell_coord(xi, P.ox, P.inv_cell, P.nx);
   const int cy = bw_cell_coord(yi, P.oy, P.inv_cell, P.ny);
@@ -328,7 +329,7 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
         const vfloat psi = VLOAD(bpsi + j);
         const vfloat ir = bw_rsqrt(fmax(r2, min_r2));
         const vfloat q = h - r2 * ir;
-        const vfloat kbj = P.wall_hydrostatic ? kb + VLOAD(bpt + j) : (vfloat)kb;
+        const vfloat kbj = P.wall_hydrostatic ? kb + fmin(VLOAD(bpt + j), cap.x + cap.y * (r2 * ir)) : (vfloat)kb;
         const vfloat c = select((vfloat)0.0f, kbj * psi * q * q * ir, ok);
         const vfloat w = select((vfloat)0.0f, kf * psi * q, ok);
         sx += c * dx + w * (VLOAD(bvx + j) - vxi);

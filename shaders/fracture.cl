@@ -50,8 +50,9 @@ __kernel void fracture_load(SimParams P, uint count, float dt, float decay, __gl
           // rigid.cl boundary_forces: the pressure part of the boundary term of j
           const float ptj = pterm[j];
           const float rhoj = rho[j];
-          const float kbb = bw_boundary_kb(P, ptj, rhoj) + bpti;
           const float ir = bw_rsqrt1(fmax(r2, min_r2));
+          const float kbb = bw_boundary_kb(P, ptj, rhoj) +
+                            (P.wall_hydrostatic ? bw_wall_term(bpti, bw_wall_cap(P, ptj, rhoj), r2 * ir) : 0.0f);
           const float q = h - r2 * ir;
           const float c = kbb * psi * q * q * ir;
           sx += c * dx;

@@ -235,9 +235,10 @@ __kernel void boundary_forces(SimParams P, ContactParams C, uint first, uint cou
           // fluid_forces, the boundary term of particle j
           const float ptj = pterm[j];
           const float rhoj = rho[j];
-          const float kbb = bw_boundary_kb(P, ptj, rhoj) + bpti;
-          const float kf = P.mu_b * P.visc / P.rho0 * (1.0f / rhoj);
           const float ir = bw_rsqrt1(fmax(r2, min_r2));
+          const float kbb = bw_boundary_kb(P, ptj, rhoj) +
+                            (P.wall_hydrostatic ? bw_wall_term(bpti, bw_wall_cap(P, ptj, rhoj), r2 * ir) : 0.0f);
+          const float kf = P.mu_b * P.visc / P.rho0 * (1.0f / rhoj);
           const float q = h - r2 * ir;
           const float c = kbb * psi * q * q * ir;
           const float w = kf * psi * q;

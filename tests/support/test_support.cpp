@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -24,7 +25,12 @@ TempDir::TempDir() {
   fs::create_directories(path_);
 }
 
+// BW_TEST_KEEP=1 keeps the folders, to look at a failed test's scenes and runs.
 TempDir::~TempDir() {
+  if (const char* keep = std::getenv("BW_TEST_KEEP"); keep && std::string(keep) == "1") {
+    std::fprintf(stderr, "kept %s\n", path_.c_str());
+    return;
+  }
   std::error_code ec;
   fs::remove_all(path_, ec);
 }
