@@ -222,7 +222,8 @@ TEST(Fluid, FluidNextToAFlatWallHasRestDensity) {
   test::TempDir dir;
   test::write_tank(dir.file("tank.h5"), {16, 16, 8}, 0.01);
   std::ofstream(dir.file("scene.toml")) << "spacing = 0.01\n[time]\nend = 0.1\n[domain]\nmin = [-0.02, -0.02, -0.02]\n"
-                                           "max = [0.19, 0.19, 0.11]\n[fluid]\nc0 = 20\ndensity = \"summation\"\n[[fluid.block]]\n"
+                                           "max = [0.19, 0.19, 0.11]\n[fluid]\nc0 = 20\ndensity = \"summation\"\n"
+                                           "[[fluid.block]]\n"
                                            "min = [0.01, 0.01, 0.01]\nmax = [0.16, 0.16, 0.06]\n"
                                            "[[solid]]\nparticles = \"tank.h5\"\n";
   const sim::Setup setup = prepare(scene::load_scene(dir.file("scene.toml")), 0.1);
