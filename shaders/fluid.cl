@@ -133,6 +133,11 @@ __kernel void fluid_wall_step(SimParams P, __global const uint* start, __global 
 // the step, from the positions and the velocities the step gave: with symplectic
 // Euler's v += a dt that pairs like x += v dt does, where a rate from the start of
 // the step would pump the sound waves up.
+// The least carried density, over rho0 (docs/scene.md, "Density"): spray that flies
+// apart keeps the water's density, and below rho0 there is no pressure to lose. Without
+// it a jet's spray thinned to 0.1 rho0 and its diffusion and viscosity weights, m / rho,
+// blew the jet on the baffle up.
+#define BW_RHO_FLOOR 0.9f
 __kernel void fluid_density(SimParams P, float dt, __global const uint* start, __global const float* x,
                             __global const float* y, __global const float* z, __global const float* vx,
                             __global const float* vy, __global const float* vz, __global const float* rho_state,
@@ -213,6 +218,7 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
       }
     }
     r = rhoi + P.spiky * (P.gamma1 * VSUM(sb) - 3.0f * P.kernel_mass * VSUM(sd) * dt);
+    r = fmax(r, BW_RHO_FLOOR * P.rho0);
   }
   const float p = bw_tait(r, P.rho0, P.stiffness, P.gamma, P.gamma_int);
   rho[i] = r;
