@@ -404,8 +404,8 @@ __kernel void fluid_integrate(SimParams P, uint n, float dt, __global float* x, 
 }
 
 // Per block of `chunk` particles (all n particles of the step, including those that
-// left the domain and sort after start[ncells]): the largest speed and acceleration
-// (for the time step) and the fastest particle and the first with a non-finite value
+// left the domain and sort after start[ncells]): the largest speed, acceleration and
+// density (for the time step) and the fastest particle and the first with a non-finite value
 // (for the guard), and the power the emitters put into the particles they hold.
 // Accelerations and densities exist only for the live particles.
 __kernel void fluid_step_reduce(uint n, uint chunk, uint nblocks, uint ncells, float mass, __global const uint* start,
@@ -418,7 +418,7 @@ __kernel void fluid_step_reduce(uint n, uint chunk, uint nblocks, uint ncells, f
   const uint live = start[ncells];
   const uint begin = b * chunk;
   const uint end = min(begin + chunk, n);
-  float max_v2 = 0.0f, max_a2 = 0.0f, held_power = 0.0f;
+  float max_v2 = 0.0f, max_a2 = 0.0f, max_rho = 0.0f, held_power = 0.0f;
   int fastest = -1, bad = -1;
   for (uint i = begin; i < end; ++i) {
     const float v2 = vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i];
@@ -437,6 +437,7 @@ __kernel void fluid_step_reduce(uint n, uint chunk, uint nblocks, uint ncells, f
       fastest = (int)i;
     }
     max_a2 = fmax(max_a2, a2);
+    if (i < live) max_rho = fmax(max_rho, rho[i]);
     // A held particle keeps its velocity whatever the forces on it (fluid_integrate):
     // its emitter supplies -m a, at the power -m a.v.
     if (i < live && hold[i] > 0u) held_power -= mass * (ax[i] * vx[i] + ay[i] * vy[i] + az[i] * vz[i]);
@@ -447,6 +448,7 @@ __kernel void fluid_step_reduce(uint n, uint chunk, uint nblocks, uint ncells, f
   r.fastest = fastest;
   r.bad = bad;
   r.held_power = held_power;
+  r.max_rho = max_rho;
   out[b] = r;
 }
 

@@ -84,6 +84,7 @@ typedef struct {
   int fastest;      // index of the (first) particle with max_v2, -1 when none
   int bad;          // first particle with a non-finite value, -1 when none
   float held_power; // sum of -m a.v over the particles emitters hold: the power they put in (W)
+  float max_rho;    // largest density of the live particles (the sound speed of the CFL limit)
 } StepReduce;
 
 // Per-block sums for the frame statistics (host adds the blocks in double).

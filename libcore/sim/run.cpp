@@ -140,7 +140,8 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
   // above them (a fixed step, dt_min = dt_max, set too large) would override them
   // from the first step on, so it is refused here rather than left to blow up.
   const Parameters& p = s.setup.params;
-  const double cfl_limit = p.cfl * p.h / (p.c0 + p.scene_speed);
+  const double signal = signal_speed(p, p.rho0);
+  const double cfl_limit = p.cfl * p.h / (signal + p.scene_speed);
   if (p.dt_min > p.contact_dt && p.contact_dt < std::min(cfl_limit, p.dt_viscous))
     fail_input("{}: time.dt_min: {} s is above the largest stable step of this scene's contacts, {:.3g} s (bodies "
                "touch with a contact frequency of {:.4g} /s, docs/scene.md); lower time.dt_min",
@@ -148,8 +149,9 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
   if (p.dt_min > std::min(cfl_limit, p.dt_viscous)) {
     if (cfl_limit <= p.dt_viscous)
       fail_input("{}: time.dt_min: {} s is above the largest stable step of this scene, {:.3g} s (the CFL limit "
-                 "time.cfl h / (c0 + its largest speed) = {} x {} / ({:.4g} + {:.4g})); lower time.dt_min",
-                 scene.path, p.dt_min, cfl_limit, p.cfl, p.h, p.c0, p.scene_speed);
+                 "time.cfl h / (c + its largest speed) = {} x {} / ({:.4g} + {:.4g}), c the signal speed at rest); "
+                 "lower time.dt_min",
+                 scene.path, p.dt_min, cfl_limit, p.cfl, p.h, signal, p.scene_speed);
     fail_input("{}: time.dt_min: {} s is above the largest stable step of this scene, {:.3g} s (the viscous limit "
                "time.viscous_factor h^2 rho0 / max(mu, mu_b)); lower time.dt_min",
                scene.path, p.dt_min, p.dt_viscous);

@@ -267,6 +267,11 @@ double lattice_gradient_moment(double spacing, double h) {
   return moment / (3 * lattice_kernel_sum(spacing, h));
 }
 
+double signal_speed(const Parameters& p, double rho) {
+  const double sound = rho > p.rho0 ? p.c0 * std::pow(rho / p.rho0, 0.5 * (p.gamma - 1)) : p.c0;
+  return sound * std::sqrt(std::max(1.0, 2 * p.gamma2 / p.gamma1));
+}
+
 double calibrated_gamma1(double spacing, double h) {
   // Kernel sums over the lattice layer k spacings away (k = 0: the particle's own).
   const int reach = static_cast<int>(std::ceil(h / spacing));

@@ -77,6 +77,13 @@ struct Parameters {
   bool wall_hydrostatic = false;
 };
 
+// The signal speed of the CFL limit where the densest particle has density rho: the
+// Tait law's sound speed c0 (rho / rho0)^((gamma - 1) / 2) (c0 below rho0, where the
+// law's pressure is clamped at 0), which grows fast with compression (8 c0 at 2 rho0
+// with gamma = 7), times sqrt(2 gamma2 / gamma1) where the walls push harder than the
+// fluid's own energy would (the hydrostatic wall: gamma2 = gamma1, sqrt 2).
+double signal_speed(const Parameters& p, double rho);
+
 // Particles in structure-of-arrays form (float, what the device computes in).
 struct ParticleArrays {
   std::vector<float> x, y, z, vx, vy, vz;

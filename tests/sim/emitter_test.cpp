@@ -169,13 +169,16 @@ TEST(Emitter, JetLeavingTheDomainCarriesItsEnergyOut) {
   EXPECT_NEAR(summary.outflow_energy, last.outflow_energy, 1e-12);
 }
 
-// With either density scheme: with the continuity equation a particle that leaves a
-// wall must get back the density it had before it came (a lone particle that kept
-// its compression hit the next wall harder and came back faster, until it blew up).
+// With either density scheme and either wall: with the continuity equation a particle
+// that leaves a wall must get back the density it had before it came (a lone particle
+// that kept its compression hit the next wall harder and came back faster, until it
+// blew up), and the steps must follow the sound speed of the most compressed particle
+// (docs/scene.md, "[time]"): steps sized for c0 gave a block fired into a corner
+// +161% of its energy with the mirrored wall and +768% with the hydrostatic one.
 class Walls : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(Walls, StopParticlesShotAtThemUpToTheSpeedOfSound) {
-  const std::string scheme = GetParam();
+  const std::string keys = GetParam();
   test::TempDir dir;
   test::write_tank(dir.file("tank.h5"), {10, 10, 10}, kSpacing);
   // Single particles and small blocks aimed at walls, edges and corners, straight
@@ -192,8 +195,8 @@ TEST_P(Walls, StopParticlesShotAtThemUpToTheSpeedOfSound) {
     const std::size_t split = box.find("], [");
     std::ofstream(dir.file(name + ".toml"))
         << "spacing = 0.01\ngravity = [0, 0, 0]\n[time]\nend = 0.03\nframe_rate = 100\n[domain]\n"
-           "min = [-0.03, -0.03, -0.03]\nmax = [0.14, 0.14, 0.14]\n[fluid]\nc0 = 30\ndensity = \""
-        << scheme << "\"\n[[fluid.block]]\nmin = "
+           "min = [-0.03, -0.03, -0.03]\nmax = [0.14, 0.14, 0.14]\n[fluid]\nc0 = 30\n"
+        << keys << "\n[[fluid.block]]\nmin = "
         << box.substr(0, split + 1) << "\nmax = " << box.substr(split + 3) << "\nvelocity = " << shot[1]
         << "\n[[solid]]\nparticles = \"tank.h5\"\n";
     const sim::RunSummary summary = test::run_scene(dir.file(name + ".toml"), dir.file(name));
@@ -206,10 +209,10 @@ TEST_P(Walls, StopParticlesShotAtThemUpToTheSpeedOfSound) {
                  run.frames.back().elastic_energy / run.frames.front().kinetic_energy);
     // Walls only take energy: bounces are inelastic (the contact, the friction). With
     // the continuity equation a block that compressed and flew apart keeps some of its
-    // density (docs/scene.md, "Density"): its total reads that elastic energy, which
-    // no longer moves anything; what moves must still slow down.
+    // density (docs/scene.md, "Density"): its total counts that elastic energy, which
+    // no longer moves anything, and still may not grow.
     EXPECT_LT(kinetic, 1) << name;
-    if (scheme == "summation") EXPECT_LT(summary.energy_drift(), 0) << name;
+    EXPECT_LT(summary.energy_drift(), 0) << name;
     const FrameData d = read_frame(frame_file_name(dir.file(name + "/frames"), 3));
     for (std::size_t i = 0; i < d.fluid_count(); ++i) {
       const Vec3d q(d.x[i], d.y[i], d.z[i]);
@@ -218,7 +221,9 @@ TEST_P(Walls, StopParticlesShotAtThemUpToTheSpeedOfSound) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Density, Walls, ::testing::Values("summation", "continuity"));
+INSTANTIATE_TEST_SUITE_P(Density, Walls,
+                         ::testing::Values("density = \"summation\"", "density = \"continuity\"",
+                                           "density = \"continuity\"\nwall_pressure = \"hydrostatic\""));
 
 }  // namespace
 }  // namespace bw
