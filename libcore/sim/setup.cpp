@@ -269,7 +269,9 @@ double lattice_gradient_moment(double spacing, double h) {
 
 double signal_speed(const Parameters& p, double rho) {
   const double sound = rho > p.rho0 ? p.c0 * std::pow(rho / p.rho0, 0.5 * (p.gamma - 1)) : p.c0;
-  return sound * std::sqrt(std::max(1.0, 2 * p.gamma2 / p.gamma1));
+  // With gamma1 = 0 the walls add nothing to the density: no stiffness of theirs to compare.
+  const double wall = p.gamma1 > 0 ? std::max(1.0, 2 * p.gamma2 / p.gamma1) : 1.0;
+  return sound * std::sqrt(wall);
 }
 
 double calibrated_gamma1(double spacing, double h) {
