@@ -23,7 +23,7 @@ struct TimeSettings {
   double frame_rate = 60;      // frames per second
   double dt_min = 1e-6;        // s
   double dt_max = 2e-3;        // s
-  double cfl = 0.4;            // lambda_v: dt <= cfl h / (c0 + max|v|)
+  double cfl = 0.4;            // lambda_v: dt <= cfl h / (c + max|v|), c the signal speed (sim/setup.h)
   double force_factor = 0.25;  // lambda_f: dt <= force_factor sqrt(h / max|a|)
   double viscous_factor = 0.125;  // dt <= viscous_factor h^2 rho0 / max(mu, mu_b)
 };
