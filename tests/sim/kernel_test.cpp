@@ -191,5 +191,31 @@ TEST(Tait, PressureAndEnergy) {
   EXPECT_EQ(bw_tait_energy(0.95f * rho0, rho0, k, 7), 0.0f);
 }
 
+// The CFL limit's signal speed is the Tait law's sound speed, sqrt(dp/drho): checked
+// against the law's own pressure by central differences, and with the walls' extra
+// stiffness.
+TEST(Tait, SignalSpeedIsTheSoundSpeedOfTheDensestParticle) {
+  Parameters p;
+  p.rho0 = 998;
+  p.c0 = 30;
+  p.gamma = 7;
+  p.gamma1 = 1.2;
+  p.gamma2 = 0.6;  // the mirrored wall: no extra stiffness
+  const double k = p.rho0 * p.c0 * p.c0 / p.gamma;
+  EXPECT_DOUBLE_EQ(signal_speed(p, p.rho0), p.c0);
+  EXPECT_DOUBLE_EQ(signal_speed(p, 0.8 * p.rho0), p.c0) << "no pressure below rho0, no faster sound";
+  EXPECT_NEAR(signal_speed(p, 2 * p.rho0), 8 * p.c0, 1e-9 * p.c0);
+  for (double a : {1.01, 1.1, 1.5}) {
+    const double rho = a * p.rho0, d = 1e-4 * p.rho0;
+    const double dp = (bw_tait(float(rho + d), float(p.rho0), float(k), 7, 7) -
+                       bw_tait(float(rho - d), float(p.rho0), float(k), 7, 7)) / (2 * d);
+    EXPECT_NEAR(signal_speed(p, rho), std::sqrt(dp), 0.01 * std::sqrt(dp)) << "rho / rho0 = " << a;
+  }
+  p.gamma2 = p.gamma1;  // the hydrostatic wall pushes with twice its density term's energy gradient
+  EXPECT_NEAR(signal_speed(p, p.rho0), std::sqrt(2.0) * p.c0, 1e-9);
+  p.gamma1 = 0;  // walls that add no density
+  EXPECT_DOUBLE_EQ(signal_speed(p, p.rho0), p.c0);
+}
+
 }  // namespace
 }  // namespace bw::sim
