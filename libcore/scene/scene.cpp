@@ -357,7 +357,7 @@ void read_fluid(Reader& top, Scene& s) {
     non_negative(r, "gamma2", f.gamma2);
   }
   if (r.has("density")) {
-    const std::string scheme = r.string("density", "summation");
+    const std::string scheme = r.string("density", "continuity");
     if (scheme == "continuity") f.density = DensityScheme::continuity;
     else if (scheme == "summation") f.density = DensityScheme::summation;
     else r.fail("density", fmt::format("\"{}\" is not a density scheme: \"continuity\" or \"summation\"", scheme));
@@ -369,8 +369,11 @@ void read_fluid(Reader& top, Scene& s) {
     if (f.density == DensityScheme::summation && f.diffusion > 0)
       r.fail("diffusion", "density diffusion needs fluid.density = \"continuity\"; set it to 0 with \"summation\"");
   }
+  // The wall follows the density scheme unless the scene names one: the summation has only
+  // the mirrored wall.
+  f.wall_pressure = f.density == DensityScheme::continuity ? WallPressure::hydrostatic : WallPressure::mirrored;
   if (r.has("wall_pressure")) {
-    const std::string wall = r.string("wall_pressure", "mirrored");
+    const std::string wall = r.string("wall_pressure", "hydrostatic");
     if (wall == "hydrostatic") f.wall_pressure = WallPressure::hydrostatic;
     else if (wall == "mirrored") f.wall_pressure = WallPressure::mirrored;
     else r.fail("wall_pressure", fmt::format("\"{}\" is not a wall pressure: \"mirrored\" or \"hydrostatic\"", wall));

@@ -46,9 +46,9 @@ struct FluidSettings {
   double gamma2 = -1;          // weight of the boundary pressure force; < 0: gamma1 / 2, or gamma1
                                // with the hydrostatic wall pressure
   std::int64_t max_particles = 0;  // MFP; 0 = what the blocks and emitters need
-  DensityScheme density = DensityScheme::summation;
+  DensityScheme density = DensityScheme::continuity;
   double diffusion = 0.1;      // delta of the density diffusion (continuity only); 0: none
-  WallPressure wall_pressure = WallPressure::mirrored;  // hydrostatic: continuity only
+  WallPressure wall_pressure = WallPressure::hydrostatic;  // continuity only; summation: mirrored
 };
 
 // A box filled with fluid particles on a cubic lattice of the scene's spacing:

@@ -167,12 +167,12 @@ int main(int argc, char** argv) {
                  "  bench-sim\n"
                  "  bench-sim --quick\n"
                  "  bench-sim --device gpu --sizes 30000,120000,1000000,4000000 --csv sim.csv\n"
-                 "  bench-sim --sizes 120000 --density continuity\n");
+                 "  bench-sim --sizes 120000 --density summation\n");
   bool quick = false;
   std::string device_choice = "auto", csv;
   std::vector<double> counts;
   double profile_near = 120000, simulate = 0.25;
-  std::string density = "summation";
+  std::string density = "continuity";  // the scene's default
   double diffusion = -1;
   auto* quick_flag = app.add_flag("--quick", quick, "The 30 k case only");
   app.add_option("--sizes", counts, "Fluid particle counts to run, about (default 30000,120000,500000)")
@@ -191,8 +191,8 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   app.add_option("--density", density,
-                 "fluid.density of the runs: summation, or continuity (with its density diffusion; the "
-                 "profile's fluid_density row is then what the continuity equation and the diffusion cost)")
+                 "fluid.density of the runs: continuity (with its density diffusion and hydrostatic wall; the profile's "
+                 "fluid_density row is what the continuity equation and the diffusion cost), or summation")
       ->check(CLI::IsMember({"summation", "continuity"}))
       ->capture_default_str();
   app.add_option("--diffusion", diffusion,

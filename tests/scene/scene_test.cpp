@@ -72,10 +72,11 @@ TEST(Scene, MinimalSceneHasDocumentedDefaults) {
   EXPECT_DOUBLE_EQ(s.fluid.gamma, 7);
   EXPECT_DOUBLE_EQ(s.fluid.mu_b, s.fluid.mu);
   EXPECT_LT(s.fluid.gamma1, 0) << "gamma1 defaults to the calibrated value, resolved by the solver";
-  EXPECT_LT(s.fluid.gamma2, 0) << "gamma2 defaults to gamma1 / 2, resolved by the solver";
+  EXPECT_LT(s.fluid.gamma2, 0) << "gamma2 defaults to gamma1 (hydrostatic wall), resolved by the solver";
   EXPECT_EQ(s.fluid.max_particles, 0);
-  EXPECT_EQ(s.fluid.density, bw::scene::DensityScheme::summation);
-  EXPECT_DOUBLE_EQ(s.fluid.diffusion, 0.1) << "delta, used with the continuity equation";
+  EXPECT_EQ(s.fluid.density, bw::scene::DensityScheme::continuity);
+  EXPECT_DOUBLE_EQ(s.fluid.diffusion, 0.1) << "delta of the density diffusion, on by default";
+  EXPECT_EQ(s.fluid.wall_pressure, bw::scene::WallPressure::hydrostatic);
   EXPECT_FALSE(s.loads);
   ASSERT_EQ(s.blocks.size(), 1u);
   EXPECT_TRUE(s.fields.velocity);
@@ -199,14 +200,15 @@ TEST(Scene, DensitySchemeAndLoads) {
   EXPECT_TRUE(s.loads);
   expect_error(f, kMinimal + "[fluid]\ndensity = \"riemann\"\n", "fluid.density: \"riemann\" is not a density scheme");
   expect_error(f, kMinimal + "[fluid]\ndensity = \"continuity\"\ndiffusion = 2\n", "fluid.diffusion: 2 must be between 0");
-  expect_error(f, kMinimal + "[fluid]\ndiffusion = 0.1\n", "fluid.diffusion: density diffusion needs fluid.density = \"continuity\"");
-  EXPECT_EQ(s.fluid.wall_pressure, bw::scene::WallPressure::mirrored);
-  const Scene w =
-      load_scene(f.write(kMinimal + "[fluid]\ndensity = \"continuity\"\nwall_pressure = \"hydrostatic\"\n"));
-  EXPECT_EQ(w.fluid.wall_pressure, bw::scene::WallPressure::hydrostatic);
-  expect_error(f, kMinimal + "[fluid]\ndensity = \"continuity\"\nwall_pressure = \"adami\"\n",
-               "fluid.wall_pressure: \"adami\" is not a wall pressure");
-  expect_error(f, kMinimal + "[fluid]\nwall_pressure = \"hydrostatic\"\n",
+  expect_error(f, kMinimal + "[fluid]\ndensity = \"summation\"\ndiffusion = 0.1\n",
+               "fluid.diffusion: density diffusion needs fluid.density = \"continuity\"");
+  EXPECT_EQ(s.fluid.wall_pressure, bw::scene::WallPressure::hydrostatic) << "the continuity's default wall";
+  const Scene m = load_scene(f.write(kMinimal + "[fluid]\ndensity = \"summation\"\n"));
+  EXPECT_EQ(m.fluid.wall_pressure, bw::scene::WallPressure::mirrored) << "the summation's only wall";
+  const Scene w = load_scene(f.write(kMinimal + "[fluid]\nwall_pressure = \"mirrored\"\n"));
+  EXPECT_EQ(w.fluid.wall_pressure, bw::scene::WallPressure::mirrored);
+  expect_error(f, kMinimal + "[fluid]\nwall_pressure = \"adami\"\n", "fluid.wall_pressure: \"adami\" is not a wall pressure");
+  expect_error(f, kMinimal + "[fluid]\ndensity = \"summation\"\nwall_pressure = \"hydrostatic\"\n",
                "fluid.wall_pressure: the hydrostatic wall pressure needs fluid.density = \"continuity\"");
   expect_error(f, kMinimal + "[output]\nloads = 1\n", "output.loads: expected true or false");
 }

@@ -17,9 +17,9 @@ namespace {
 constexpr double kSpacing = 0.01;
 constexpr double kDepth = 0.5;  // m of water: 50 layers
 
-// The default (the summation, a mirrored wall) and the continuity equation with the
-// hydrostatic wall pressure, the pair that holds a deep column up as the missing fluid
-// would (docs/scene.md, "Density").
+// The default (the continuity equation with the hydrostatic wall pressure, the pair that
+// holds a deep column up as the missing fluid would) and the summation with its mirrored
+// wall (docs/scene.md, "Density").
 struct Model {
   const char* name;
   const char* fluid_keys;
@@ -126,10 +126,8 @@ fields = ["pressure", "density"]
 INSTANTIATE_TEST_SUITE_P(Models, Hydrostatic,
                          // The hydrostatic wall's fit reads the discrete gradient on the
                          // settled packing, 1.04 rho0 g here (docs/scene.md, "Density").
-                         testing::Values(Model{"Summation", "", 0.03, false},
-                                         Model{"ContinuityHydrostaticWall",
-                                               "density = \"continuity\"\nwall_pressure = \"hydrostatic\"\n", 0.05,
-                                               true}),
+                         testing::Values(Model{"Summation", "density = \"summation\"\n", 0.03, false},
+                                         Model{"ContinuityHydrostaticWall", "", 0.05, true}),
                          [](const testing::TestParamInfo<Model>& info) { return std::string(info.param.name); });
 
 }  // namespace
