@@ -76,6 +76,25 @@ Sample measure(sim::Solver& solver, double s, double level) {
     }
     psi[b] = P.rho0 / sum;
   }
+  // The pressure each boundary particle holds: the fluid particle's own with the
+  // mirrored wall; with the hydrostatic wall the fluid's pressure extrapolated to it,
+  // sum_f (p_f + rho_f g.(x_b - x_f)) W_bf / sum_f W_bf, not below 0, and per pair no
+  // more than p_f + rho_f |g| (r + h) (fluid.cl boundary_pressure, sph_boundary.h).
+  const double g = P.gravity.norm();
+  std::vector<double> pb(nb, 0.0);
+  if (P.wall_hydrostatic) {
+    for (std::size_t b = 0; b < nb; ++b) {
+      double sw = 0, sp = 0;
+      for (std::size_t i = 0; i < nf; ++i) {
+        const double r = distance(d.x[i], d.y[i], d.z[i], d.bx[b], d.by[b], d.bz[b]);
+        if (r >= h) continue;
+        const Vec3d from_f(double(d.bx[b]) - d.x[i], double(d.by[b]) - d.y[i], double(d.bz[b]) - d.z[i]);
+        const double w = std::pow(h - r, 3);
+        sw += w, sp += w * (d.p[i] + d.rho[i] * P.gravity.dot(from_f));
+      }
+      pb[b] = sw > 0 ? std::max(sp / sw, 0.0) : 0.0;
+    }
+  }
   // The vertical force each boundary particle takes from the fluid: the exact negative
   // of its pressure term in the fluid's forces, times the particle mass.
   Sample out;
@@ -83,10 +102,11 @@ Sample measure(sim::Solver& solver, double s, double level) {
   std::vector<double> floor_load(static_cast<std::size_t>(n * n), 0.0);
   for (std::size_t i = 0; i < nf; ++i) {
     const double p = d.p[i], rho = d.rho[i];
-    const double k = P.mass * P.gamma2 * (p / (rho * rho) + p / (P.rho0 * P.rho0)) / P.gradient_moment;
     for (std::size_t b = 0; b < nb; ++b) {
       const double r = distance(d.x[i], d.y[i], d.z[i], d.bx[b], d.by[b], d.bz[b]);
       if (r >= h || r <= 0) continue;
+      const double wall = P.wall_hydrostatic ? std::min(pb[b], p + rho * g * (r + h)) : p;
+      const double k = P.mass * P.gamma2 * (p / (rho * rho) + wall / (P.rho0 * P.rho0)) / P.gradient_moment;
       const double up = -k * psi[b] * grad * (h - r) * (h - r) / r * (double(d.z[i]) - d.bz[b]);
       switch (place[b]) {
         case Place::box_bottom: out.bottom += up; break;
