@@ -16,12 +16,23 @@
 #define BW_MIN_R2_FRACTION 1e-12f
 // The density diffusion's (0.1 h)^2, as Molteni & Colagrossi and DualSPHysics write it.
 #define BW_DIFFUSION_ETA2 0.01f
+// 0: the density pass without the diffusion's terms (the solver builds it so when
+// fluid.diffusion is 0).
+#ifndef BW_DIFFUSION
+#define BW_DIFFUSION 1
+#endif
 // At rest the fluid next to a wall carries more density than the hydrostatic line,
 // which the mirrored wall's boundary force (gamma2 = gamma1 / 2, p_i alone) needs: its
 // excess over rho0 is about (1 + BW_WALL_STEP phi) times the hydrostatic one, phi its
 // boundary fraction (fluid_density's diffusion; docs/scene.md, "Density"). The
 // hydrostatic wall (sph_boundary.h) needs no step: 0.
 #define BW_WALL_STEP (P.wall_layer_step)
+// 0: no step (the hydrostatic wall), and the density pass's diffusion leaves out the
+// neighbours' boundary fractions that only the step needs (the solver builds it so:
+// their loads were a fifth of the pass).
+#ifndef BW_WALL_STEP_ON
+#define BW_WALL_STEP_ON 1
+#endif
 
 // Non-finite test on the bits, immune to compiler options that assume finite math.
 static inline bool bw_finite(float v) { return (as_uint(v) & 0x7f800000u) != 0x7f800000u; }
@@ -98,10 +109,10 @@ __kernel void fluid_wall_step(SimParams P, __global const uint* start, __global 
 
 // The density of every particle, then the Tait pressure, the per-particle factors the
 // force kernel reads, with the constants of its sums folded in (pterm = kp p / rho^2,
-// vol = kv / rho, below), and with the summation the boundary fraction phi = sum_b
-// Psi_b W_spiky(x_ib) / rho0 (1 on a wall's layer of particles, 0.15 one spacing from
-// a flat wall, 0 far from walls; with the continuity equation fluid_wall_fraction
-// writes it before).
+// vol = kv / rho, below), and the boundary fraction phi = sum_b Psi_b W_spiky(x_ib) /
+// rho0 (1 on a wall's layer of particles, 0.15 one spacing from a flat wall, 0 far
+// from walls; with the continuity equation and the mirrored wall's density step
+// fluid_wall_fraction writes it before, for the diffusion).
 //
 // The density is the sum rho_i = m sum_j W(x_ij) + gamma1 sum_b Psi_b W(x_ib) with
 // W = W_spiky, or, with P.continuity (docs/scene.md, "Density"), the particle's own,
@@ -179,7 +190,11 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
   } else {
     const float vxi = vx[i], vyi = vy[i], vzi = vz[i];
     const float rhoi = rho_state[i];
+#if BW_WALL_STEP_ON
     const float phii = phi[i], rti = BW_WALL_REDUCED(P.rho0, rhoi, phii);
+#else
+    const float rti = rhoi;
+#endif
     const float min_r2 = h2 * BW_MIN_R2_FRACTION;  // keeps 1/r finite for the particle itself
     const float eta2 = BW_DIFFUSION_ETA2 * h2;
     vfloat sd = 0.0f;  // the fluid's drho/dt over -3 spiky m
@@ -194,18 +209,30 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
           const vint ok = (r2 < h2) & VIN_ROW(j, e);
           const vfloat ir = bw_rsqrt(fmax(r2, min_r2));
           const vfloat q = h - r2 * ir;
-          const vfloat rhoj = VLOAD(rho_state + j);
           // v_ij . x_ij, and -rho_H,ji = H.x_ij; x_ji . grad W_ij / r^2 = 3 spiky (h - r)^2 / r.
           // Lanes past the row or the support may hold anything: select, never multiply by 0.
           const vfloat vij = (vxi - VLOAD(vx + j)) * dx + (vyi - VLOAD(vy + j)) * dy + (vzi - VLOAD(vz + j)) * dz;
+#if BW_DIFFUSION
+          const vfloat rhoj = VLOAD(rho_state + j);
           const vfloat hyd = P.hx * dx + P.hy * dy + P.hz * dz;
           // The diffusion's weight x_ji . grad W / (r^2 + eta^2): spiky's gradient does not
           // vanish at r = 0, and without eta two close particles would diffuse without bound.
+          // rate (rti - rtj - hyd) / rho_j with rtj = rho0 + (rho_j - rho0) / sj, with one
+          // division.
           const vfloat r = r2 * ir;
+#if BW_WALL_STEP_ON
           const vfloat phij = VLOAD(phi + j);
-          const vfloat rtj = BW_WALL_REDUCED(P.rho0, rhoj, phij);
-          const vfloat rate = P.diffusion * (1.0f + 0.5f * BW_WALL_STEP * (phii + phij)) * r / (r2 + eta2);
-          sd += select((vfloat)0.0f, q * q * (vij * ir + rate * (rti - rtj - hyd) / rhoj), ok);
+          const vfloat sj = 1.0f + BW_WALL_STEP * phij;
+          const vfloat num = ((rti - P.rho0 - hyd) * sj - (rhoj - P.rho0)) * (1.0f + 0.5f * BW_WALL_STEP * (phii + phij)) * r;
+          const vfloat den = sj * (r2 + eta2) * rhoj;
+#else
+          const vfloat num = (rti - rhoj - hyd) * r;
+          const vfloat den = (r2 + eta2) * rhoj;
+#endif
+          sd += select((vfloat)0.0f, q * q * (vij * ir + P.diffusion * num / den), ok);
+#else
+          sd += select((vfloat)0.0f, q * q * (vij * ir), ok);
+#endif
         }
         const int bs = (int)bstart[row + x0], be = (int)bstart[row + x1 + 1];
         for (int j = bs; j < be; j += BW_VW) {
@@ -214,6 +241,10 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
           const vfloat r2 = dx * dx + dy * dy + dz * dz;
           const vfloat d2 = dt * (dt * (ux * ux + uy * uy + uz * uz) - 2.0f * (ux * dx + uy * dy + uz * dz));
           sb += select((vfloat)0.0f, VLOAD(bpsi + j) * bw_spiky_change(h, min_r2, r2, d2), VIN_ROW(j, be));
+#if !BW_WALL_STEP_ON
+          const vfloat q = h - sqrt(r2);
+          wb += select((vfloat)0.0f, VLOAD(bpsi + j) * q * q * q, (r2 < h2) & VIN_ROW(j, be));
+#endif
         }
       }
     }
@@ -225,7 +256,9 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
   pres[i] = p;
   pterm[i] = P.pressure_scale * p / (r * r);
   vol[i] = P.viscosity_scale / r;
-  if (!P.continuity) phi[i] = P.spiky * VSUM(wb) / P.rho0;
+  // With the continuity equation and a wall step fluid_wall_fraction wrote phi before
+  // (the diffusion reads the neighbours'); otherwise this pass finds it, as that one does.
+  if (!P.continuity || !BW_WALL_STEP_ON) phi[i] = P.spiky * VSUM(wb) / P.rho0;
 }
 
 // The pressure a hydrostatic wall's boundary particle b holds (P.wall_hydrostatic),

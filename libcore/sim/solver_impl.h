@@ -291,7 +291,9 @@ struct Solver::Impl {
   // The density kernel with parameters Q (P, or P with the summation for a check).
   void launch_density(const SimParams& Q) {
     const int f = front;
-    if (Q.continuity) {  // the diffusion reads every neighbour's phi
+    // The diffusion reads every neighbour's phi where the wall has a density step;
+    // otherwise the density pass finds phi itself.
+    if (Q.continuity && Q.wall_layer_step != 0) {
       wall_fraction.args(Q, start, x[f], y[f], z[f], bstart, bx, by, bz, bpsi, phi);
       ctx.launch(wall_fraction, n);
     }

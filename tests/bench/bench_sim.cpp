@@ -2,7 +2,8 @@
 // here) for a dam break at about 30 k, 120 k and 500 k fluid particles: particle-steps
 // per second (best and median of several rounds, and from process CPU time), device
 // bytes per fluid particle, how the cost per particle-step grows with size, where the
-// time goes, and the wall time per simulated second. Prints figures, asserts nothing.
+// time goes (with the density diffusion's own share, against the density pass built
+// without it), and the wall time per simulated second. Prints figures, asserts nothing.
 //
 //   build/tests/bench/bench-sim [--quick]      (--quick: the 30 k case only)
 //   build/tests/bench/bench-sim --device gpu --sizes 30000,120000,1000000,4000000 --csv sim.csv
@@ -54,14 +55,14 @@ struct Result {
   double setup_seconds = 0;              // scene, solver and device buffers
   double wall_per_simulated = 0;         // wall s per simulated s (0: not measured)
   int n = 0;
+  // Profiled cases: ms per step by kernel, and in all.
+  std::vector<std::pair<std::string, double>> kernel_ms;
+  double step_ms = 0;
 };
 
 // A dam break: a column n x n x 2n spacings against the end of a closed tank
-// 4n x n x 3n, spacing 1 cm, h = 2 spacings (~33 neighbours).
-Result run_case(const bw::compute::DeviceInfo& device, int n, bool profile, double simulate_seconds,
-               const std::string& density, double diffusion) {
-  bw::Stopwatch setup;
-  bw::test::TempDir dir;
+// 4n x n x 3n, spacing 1 cm, h = 2 spacings (~33 neighbours); its scene file in dir.
+bw::scene::Scene dam_break(const bw::test::TempDir& dir, int n, const std::string& density, double diffusion) {
   const double s = 0.01;
   bw::test::write_tank(dir.file("tank.h5"), {4 * n, n, 3 * n}, s);
   const double L = (4 * n + 0.5) * s, W = (n + 0.5) * s, H = (3 * n + 0.5) * s;
@@ -71,11 +72,21 @@ Result run_case(const bw::compute::DeviceInfo& device, int n, bool profile, doub
                                       << ", " << 2 * n * s << "]\n[[solid]]\nparticles = \"tank.h5\"\n"
                                       << "[fluid]\ndensity = \"" << density << "\"\n";
   if (diffusion >= 0) std::ofstream(dir.file("dam.toml"), std::ios::app) << "diffusion = " << diffusion << "\n";
-  const bw::scene::Scene scene = bw::scene::load_scene(dir.file("dam.toml"));
+  return bw::scene::load_scene(dir.file("dam.toml"));
+}
+
+bw::sim::RunOptions quiet_options(const bw::test::TempDir& dir) {
   bw::sim::RunOptions options;
   options.output = dir.file("out");
   options.progress = false;
-  bw::sim::Simulation simulation(scene, device, options);
+  return options;
+}
+
+Result run_case(const bw::compute::DeviceInfo& device, int n, bool profile, double simulate_seconds,
+               const std::string& density, double diffusion) {
+  bw::Stopwatch setup;
+  bw::test::TempDir dir;
+  bw::sim::Simulation simulation(dam_break(dir, n, density, diffusion), device, quiet_options(dir));
   bw::sim::Solver& solver = simulation.solver();
 
   Result r;
@@ -115,14 +126,16 @@ Result run_case(const bw::compute::DeviceInfo& device, int n, bool profile, doub
     solver.context().set_profiling(true);
     solver.context().reset_kernel_times();
     for (int i = 0; i < kSteps; ++i) solver.step(10.0);
-    double total = 0;
-    for (const auto& k : solver.context().kernel_times()) total += k.seconds;
-    std::printf("  time per step by kernel (profiled, each launch waited for):\n");
     for (const auto& k : solver.context().kernel_times()) {
-      if (k.seconds < 0.005 * total) continue;
-      std::printf("    %-20s %7.2f ms  %5.1f%%\n", k.name.c_str(), 1e3 * k.seconds / kSteps, 100 * k.seconds / total);
+      r.kernel_ms.emplace_back(k.name, 1e3 * k.seconds / kSteps);
+      r.step_ms += 1e3 * k.seconds / kSteps;
     }
     solver.context().set_profiling(false);
+    std::printf("  time per step by kernel (profiled, each launch waited for):\n");
+    for (const auto& [name, ms] : r.kernel_ms) {
+      if (ms < 0.005 * r.step_ms) continue;
+      std::printf("    %-20s %7.2f ms  %5.1f%%\n", name.c_str(), ms, 100 * ms / r.step_ms);
+    }
   }
 
   if (simulate_seconds > 0) {
@@ -138,6 +151,34 @@ Result run_case(const bw::compute::DeviceInfo& device, int n, bool profile, doub
                 simulate_seconds / static_cast<double>(solver.steps() - steps0), wall, wall / simulate_seconds);
   }
   return r;
+}
+
+// ms per step in the kernel `name` over `steps` profiled steps.
+double kernel_ms(bw::sim::Solver& solver, const std::string& name, int steps) {
+  solver.context().set_profiling(true);
+  solver.context().reset_kernel_times();
+  for (int i = 0; i < steps; ++i) solver.step(10.0);
+  double ms = 0;
+  for (const auto& k : solver.context().kernel_times())
+    if (k.name == name) ms = 1e3 * k.seconds / steps;
+  solver.context().set_profiling(false);
+  return ms;
+}
+
+// The density diffusion's own cost: the density pass of the case with it and of the
+// same case built without its terms (fluid.diffusion = 0), profiled in turns, 8 steps
+// at a time; the least of 6 turns each (one turn's launches vary by 10-20%).
+std::pair<double, double> diffusion_cost(const bw::compute::DeviceInfo& device, int n, double diffusion) {
+  bw::test::TempDir a, b;
+  bw::sim::Simulation with(dam_break(a, n, "continuity", diffusion), device, quiet_options(a));
+  bw::sim::Simulation without(dam_break(b, n, "continuity", 0.0), device, quiet_options(b));
+  for (int i = 0; i < 5; ++i) with.solver().step(10.0), without.solver().step(10.0);
+  double least_with = 1e300, least_without = 1e300;
+  for (int turn = 0; turn < 6; ++turn) {
+    least_with = std::min(least_with, kernel_ms(with.solver(), "fluid_density", 8));
+    least_without = std::min(least_without, kernel_ms(without.solver(), "fluid_density", 8));
+  }
+  return {least_with, least_without};
 }
 
 // Column side n of the dam break holding about `count` fluid particles (2 n^3).
@@ -224,6 +265,12 @@ int main(int argc, char** argv) {
     for (int n : sizes) {
       std::printf("column %d x %d x %d:\n", n, n, 2 * n);
       const Result r = run_case(device, n, n == profiled, n == smallest ? simulate : 0.0, density, diffusion);
+      if (n == profiled && density == "continuity" && diffusion != 0) {
+        const auto [with, without] = diffusion_cost(device, n, diffusion);
+        std::printf("  density diffusion: fluid_density %.2f ms per step with it, %.2f ms built without it (least "
+                    "of 6 turns of 8 steps each): %.2f ms, %.1f%% of the %.2f ms step above\n",
+                    with, without, with - without, 100 * (with - without) / r.step_ms, r.step_ms);
+      }
       std::printf("  %lld fluid + %lld boundary particles (set up in %.1f s)\n", static_cast<long long>(r.fluid),
                   static_cast<long long>(r.boundary), r.setup_seconds);
       std::printf("  particle-steps/s: best %s, median %s", bw::human_count(r.best).c_str(),
