@@ -258,7 +258,11 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
   vol[i] = P.viscosity_scale / r;
   // With the continuity equation and a wall step fluid_wall_fraction wrote phi before
   // (the diffusion reads the neighbours'); otherwise this pass finds it, as that one does.
-  if (!P.continuity || !BW_WALL_STEP_ON) phi[i] = P.spiky * VSUM(wb) / P.rho0;
+#if BW_WALL_STEP_ON
+  if (!P.continuity) phi[i] = P.spiky * VSUM(wb) / P.rho0;
+#else
+  phi[i] = P.spiky * VSUM(wb) / P.rho0;
+#endif
 }
 
 // The pressure a hydrostatic wall's boundary particle b holds (P.wall_hydrostatic),
