@@ -373,7 +373,7 @@ StabilityReport check_stability(const std::string& run_dir, const StabilityLimit
   if (report.outside_domain > 0) l.push_back(fmt::format("{} particle positions outside the domain", report.outside_domain));
   if (report.inside_solids > 0)
     l.push_back(fmt::format("{} particle positions inside solids, behind their boundary particles (first in frame {}, "
-                            "deepest {:.2f} spacings)",
+                            "deepest {:.3f} spacings)",
                             report.inside_solids, report.first_bad_frame, report.deepest));
   if (!(r.density_error_worst <= limits.density_error))
     f.push_back(fmt::format("worst density error {:.4f} above {}", r.density_error_worst, limits.density_error));
