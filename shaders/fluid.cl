@@ -33,6 +33,11 @@
 #ifndef BW_WALL_STEP_ON
 #define BW_WALL_STEP_ON 1
 #endif
+// 1: gravity along z (the solver builds it so when g has no x or y part), and the
+// diffusion's hydrostatic part takes one product instead of three.
+#ifndef BW_GRAVITY_ALONG_Z
+#define BW_GRAVITY_ALONG_Z 0
+#endif
 
 // Non-finite test on the bits, immune to compiler options that assume finite math.
 static inline bool bw_finite(float v) { return (as_uint(v) & 0x7f800000u) != 0x7f800000u; }
@@ -214,7 +219,11 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
           const vfloat vij = (vxi - VLOAD(vx + j)) * dx + (vyi - VLOAD(vy + j)) * dy + (vzi - VLOAD(vz + j)) * dz;
 #if BW_DIFFUSION
           const vfloat rhoj = VLOAD(rho_state + j);
+#if BW_GRAVITY_ALONG_Z
+          const vfloat hyd = P.hz * dz;  // the same bits: the other two terms add zeros
+#else
           const vfloat hyd = P.hx * dx + P.hy * dy + P.hz * dz;
+#endif
           // The diffusion's weight x_ji . grad W / (r^2 + eta^2): spiky's gradient does not
           // vanish at r = 0, and without eta two close particles would diffuse without bound.
           // rate (rti - rtj - hyd) / rho_j with rtj = rho0 + (rho_j - rho0) / sj, with one

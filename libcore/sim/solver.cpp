@@ -90,11 +90,13 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   const std::string options = compute::kernel_build_options(dev);
   s.grid_program = context.build("grid.cl", compute::embedded_kernels(), options);
   // Without density diffusion its terms are compiled out of the density pass (bench-sim
-  // measures what they cost against that build), and without the wall layer's density
-  // step (the hydrostatic wall) the step's terms.
+  // measures what they cost against that build), without the wall layer's density
+  // step (the hydrostatic wall) the step's terms, and with gravity along z the
+  // hydrostatic part's other two products.
   const bool diffusion = p.continuity && p.diffusion > 0;
   const std::string fluid_options = options + (diffusion ? "" : " -DBW_DIFFUSION=0") +
-                                    (P.wall_layer_step != 0 ? "" : " -DBW_WALL_STEP_ON=0");
+                                    (P.wall_layer_step != 0 ? "" : " -DBW_WALL_STEP_ON=0") +
+                                    (P.hx == 0 && P.hy == 0 ? " -DBW_GRAVITY_ALONG_Z=1" : "");
   s.fluid_program = context.build("fluid.cl", compute::embedded_kernels(), fluid_options);
   s.fluid_keys = s.grid_program.kernel("fluid_keys");
   s.boundary_keys = s.grid_program.kernel("boundary_keys");
