@@ -22,19 +22,21 @@ namespace bw {
 namespace {
 
 // Scene 4 at its own spacing (0.08 m), long enough for the surge to reach the houses
-// and go past them. The flood's first contact loads a house's face within a step or
-// two, faster than the bond energies of the four materials tell apart, so houses may
-// break in the same step: the weakest (the hut, FRC 0.33) breaks no later than any
-// other and strictly before the strongest (concrete, 0.97), which breaks no earlier
-// than any other or not at all; and the hut ends in more pieces than the concrete
-// house. Measured on five runs per density scheme whose viscosity differed in the
-// 7th digit (to stand for another CPU's rounding): the first fractures did not move
-// (summation: hut and brick 0.4777 s, warehouse 0.4789, concrete 0.4800; continuity:
-// hut and brick 0.4778, warehouse and concrete 0.4789), the hut ended in 10-14 and
-// 8-9 pieces, the concrete house in 3-5 and 4; the two middle materials' pieces
-// (4-9) overlap and are not compared. At 0.1 m the lanes' floods differ by more
-// than a step at the first contact, and the concrete house broke 5.6 ms before the
-// warehouse.
+// and go past them. The hut (FRC 0.33) breaks under the flood's first push; the other
+// three break when the surge's impact loads their faces, within a step or three of
+// each other, faster than their bond energies tell apart at this spacing. So: the hut
+// breaks first, by more than the spread the arithmetic alone gives; the strongest
+// (concrete, 0.97) breaks no earlier than any other less that spread, or not at all;
+// and the hut ends in more pieces than the concrete house. The spread, measured with
+// the continuity equation and the hydrostatic wall (the defaults) at kernel vector
+// widths 1, 4, 8 and 16 (another summation order, as another CPU or a GPU has): the
+// hut at 0.5394-0.5395 s; brick 0.5510-0.5532, warehouse 0.5510-0.5517, concrete
+// 0.5517-0.5518 s, the three in any order within 2.3 ms (three steps); the hut in 9-10
+// pieces, the concrete house in 2-3. (With the summation, five runs whose viscosity
+// differed in the 7th digit broke hut and brick at 0.4777 s, warehouse 0.4789,
+// concrete 0.4800.)
+constexpr double kArithmeticSpread = 0.003;  // s: the stronger houses' breaks move this much
+
 TEST(Houses, WeakestBreaksFirstStrongestLast) {
   ASSERT_TRUE(test::has_breakable("houses")) << "examples/houses.toml: the houses are not breakable";
   test::TempDir out;
@@ -77,13 +79,15 @@ TEST(Houses, WeakestBreaksFirstStrongestLast) {
   }
 
   ASSERT_LT(first["hut"], never) << "the weakest house (FRC 0.33) does not break";
-  for (const std::string& house : houses)
-    EXPECT_LE(first["hut"], first[house]) << "the hut breaks first; " << house << " broke at " << first[house]
-                                          << " s, the hut at " << first["hut"] << " s";
-  EXPECT_LT(first["hut"], first["concrete"]) << "the hut and the concrete house broke in the same step";
-  for (const std::string& house : houses)
-    EXPECT_GE(first["concrete"], first[house]) << "concrete breaks last or not at all: at " << first["concrete"]
-                                               << " s, " << house << " at " << first[house] << " s";
+  for (const std::string& house : houses) {
+    if (house == "hut") continue;
+    EXPECT_GT(first[house] - first["hut"], kArithmeticSpread)
+        << "the hut breaks first, clearly; " << house << " broke at " << first[house] << " s, the hut at "
+        << first["hut"] << " s";
+    EXPECT_GE(first["concrete"], first[house] - kArithmeticSpread)
+        << "concrete breaks last or not at all: at " << first["concrete"] << " s, " << house << " at " << first[house]
+        << " s";
+  }
   EXPECT_GT(pieces["hut"], pieces["concrete"])
       << "the hut ends in " << pieces["hut"] << " pieces, the concrete house in " << pieces["concrete"];
 }
