@@ -13,33 +13,6 @@
 
 #include "common/error.h"
 #include "fracture_fixtures.h"
-#include "sim/solver.h"
-#include "test_support.h"
-
-namespace {
-
-struct Outcome {
-  double first = -1;  // time of the first fracture (s); < 0: none
-  int fragments = 0;  // active bodies split off the wall at the end
-};
-
-Outcome run(const std::string& text, double end) {
-  bw::test::TempDir dir;
-  bw::test::write_fracture_solids(dir.file(""));
-  bw::sim::Solver solver(bw::test::prepare_text(dir.file(""), text), bw::test::shared_context());
-  Outcome out;
-  while (solver.time() < end) {
-    solver.step(end);
-    if (out.first < 0 && !solver.fracture_events().empty()) out.first = solver.time();
-  }
-  for (int b = 0; b < solver.body_count(); ++b) {
-    const bw::sim::BodyInfo& info = solver.body_info(b);
-    out.fragments += info.active && info.parent >= 0 ? 1 : 0;
-  }
-  return out;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app("The fracture calibration: the tests' wall hit by a cube of water at each speed, for the strong "
@@ -66,9 +39,9 @@ int main(int argc, char** argv) {
     for (const double frc : {0.97, 0.45}) {
       for (const double v : speeds) {
         const double contact = gap / v, end = contact + after;
-        const Outcome o = run(bw::test::fracture_scene(v, frc, end, extra, gap), end);
+        const bw::test::FractureOutcome o = bw::test::run_fracture_scene(bw::test::fracture_scene(v, frc, end, extra, gap), end);
         fmt::print("| {} | {} | {} | {} | {} |\n", frc, v, o.first >= 0 ? "yes" : "no",
-                   o.first >= 0 ? fmt::format("{:.1f}", 1e3 * (o.first - contact)) : "", o.fragments);
+                   o.first >= 0 ? fmt::format("{:.1f}", 1e3 * (o.first - contact)) : "", bw::test::fragments(o));
         std::fflush(stdout);
       }
     }

@@ -1,5 +1,6 @@
 #include "fracture_fixtures.h"
 
+#include <algorithm>
 #include <fstream>
 
 #include <fmt/format.h>
@@ -9,6 +10,7 @@
 #include "mesh/shapes.h"
 #include "sample/sampler.h"
 #include "scene/scene.h"
+#include "test_support.h"
 
 namespace bw::test {
 
@@ -59,6 +61,33 @@ sim::Setup prepare_text(const std::string& folder, const std::string& text) {
 compute::Context& shared_context() {
   static compute::Context context(compute::choose_device("auto"));
   return context;
+}
+
+FractureOutcome run_fracture_scene(const std::string& text, double end) {
+  TempDir dir;
+  write_fracture_solids(dir.file(""));
+  sim::Solver solver(prepare_text(dir.file(""), text), shared_context());
+  FractureOutcome out;
+  while (solver.time() < end) {
+    solver.step(end);
+    std::int64_t active = 0;
+    for (int b = 0; b < solver.body_count(); ++b) active += solver.body_info(b).active ? 1 : 0;
+    out.most_active = std::max(out.most_active, active);
+    if (out.first < 0 && !solver.fracture_events().empty()) out.first = solver.time();
+  }
+  out.events = solver.fracture_events();
+  for (int b = 0; b < solver.body_count(); ++b) {
+    out.infos.push_back(solver.body_info(b));
+    out.masses.push_back(solver.body(b).mass());
+  }
+  out.states = solver.body_states();
+  return out;
+}
+
+std::size_t fragments(const FractureOutcome& o) {
+  std::size_t n = 0;
+  for (const sim::BodyInfo& i : o.infos) n += i.active && i.parent >= 0 ? 1 : 0;
+  return n;
 }
 
 }  // namespace bw::test

@@ -3,11 +3,15 @@
 // given speed. Small enough that a run of 40 ms takes a few seconds on 2 cores.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "common/geometry.h"
 #include "compute/context.h"
+#include "rigid/body.h"
 #include "sim/setup.h"
+#include "sim/solver.h"
 
 namespace bw::test {
 
@@ -29,5 +33,21 @@ sim::Setup prepare_text(const std::string& folder, const std::string& text);
 
 // One context on the default device for the whole executable.
 compute::Context& shared_context();
+
+// What a fracture scene's run ended with.
+struct FractureOutcome {
+  std::vector<FractureEvent> events;
+  std::vector<sim::BodyInfo> infos;
+  std::vector<rigid::MassProperties> masses;
+  BodyStates states;
+  std::int64_t most_active = 0;  // largest number of active bodies after any step
+  double first = -1;             // time of the first fracture; < 0: none
+};
+
+// Runs the scene `text` (fracture_scene) with the fracture solids to `end` seconds.
+FractureOutcome run_fracture_scene(const std::string& text, double end);
+
+// Fragments active at the end (bodies split off a parent).
+std::size_t fragments(const FractureOutcome& o);
 
 }  // namespace bw::test

@@ -19,41 +19,9 @@
 namespace bw {
 namespace {
 
-struct Outcome {
-  std::vector<FractureEvent> events;
-  std::vector<sim::BodyInfo> infos;
-  std::vector<rigid::MassProperties> masses;
-  BodyStates states;
-  std::int64_t most_active = 0;  // largest number of active bodies after any step
-  double first = -1;             // time of the first fracture
-};
-
-Outcome run_scene(const std::string& text, double end) {
-  test::TempDir dir;
-  test::write_fracture_solids(dir.file(""));
-  sim::Solver solver(test::prepare_text(dir.file(""), text), test::shared_context());
-  Outcome out;
-  while (solver.time() < end) {
-    solver.step(end);
-    std::int64_t active = 0;
-    for (int b = 0; b < solver.body_count(); ++b) active += solver.body_info(b).active ? 1 : 0;
-    out.most_active = std::max(out.most_active, active);
-    if (out.first < 0 && !solver.fracture_events().empty()) out.first = solver.time();
-  }
-  out.events = solver.fracture_events();
-  for (int b = 0; b < solver.body_count(); ++b) {
-    out.infos.push_back(solver.body_info(b));
-    out.masses.push_back(solver.body(b).mass());
-  }
-  out.states = solver.body_states();
-  return out;
-}
-
-std::size_t fragments(const Outcome& o) {
-  std::size_t n = 0;
-  for (const sim::BodyInfo& i : o.infos) n += i.active && i.parent >= 0 ? 1 : 0;
-  return n;
-}
+using Outcome = test::FractureOutcome;
+using test::fragments;
+const auto run_scene = test::run_fracture_scene;
 
 constexpr double kStrong = 10.0;   // m/s
 constexpr double kGentle = 1.0;
