@@ -418,7 +418,8 @@ __kernel void fluid_integrate(SimParams P, uint n, float dt, __global float* x, 
                               __global const uint* bstart, __global const float* bx, __global const float* by,
                               __global const float* bz, __global const float* bnx, __global const float* bny,
                               __global const float* bnz, __global const float* bvx, __global const float* bvy,
-                              __global const float* bvz, __global uint* hold, __global const EmitterParams* emitters) {
+                              __global const float* bvz, __global const uint* bsolid, __global const uint* one_sided,
+                              __global uint* hold, __global const EmitterParams* emitters) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const uint held = hold[i];
@@ -438,8 +439,8 @@ __kernel void fluid_integrate(SimParams P, uint n, float dt, __global float* x, 
   const float xi = x[i], yi = y[i], zi = z[i];
   if (phi[i] > 0.0f) {
     float tx, ty, tz;
-    bw_wall_contact(P, xi, yi, zi, &ux, &uy, &uz, bstart, bx, by, bz, bnx, bny, bnz, bvx, bvy, bvz, 0xffffffffu, &tx,
-                    &ty, &tz);
+    bw_wall_contact(P, xi, yi, zi, &ux, &uy, &uz, bstart, bx, by, bz, bnx, bny, bnz, bvx, bvy, bvz, bsolid, one_sided,
+                    0xffffffffu, &tx, &ty, &tz);
   }
   vx[i] = ux;
   vy[i] = uy;

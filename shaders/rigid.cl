@@ -190,7 +190,7 @@ __kernel void boundary_forces(SimParams P, ContactParams C, uint first, uint cou
                               __global const float* bvx, __global const float* bvy, __global const float* bvz,
                               __global const float* bnx, __global const float* bny, __global const float* bnz,
                               __global const float* bflat, __global const float* bpsi, __global const float* bpt,
-                              __global const uint* bsolid,
+                              __global const uint* bsolid, __global const uint* one_sided,
                               __global const uint* rank, __global const uint* order, __global const OwnerParams* owners,
                               __global const uint* wet_in, __global float* fx, __global float* fy, __global float* fz,
                               __global float* tx, __global float* ty, __global float* tz, __global float* touching,
@@ -249,8 +249,8 @@ __kernel void boundary_forces(SimParams P, ContactParams C, uint first, uint cou
         if (dt > 0.0f && r2 < patch_reach2 && phi[j] > 0.0f && hold[j] == 0) {
           float ux = vx[j] + ax[j] * dt, uy = vy[j] + ay[j] * dt, uz = vz[j] + az[j] * dt;
           float ex, ey, ez;
-          bw_wall_contact(P, xj, yj, zj, &ux, &uy, &uz, bstart, bx, by, bz, bnx, bny, bnz, bvx, bvy, bvz, i, &ex, &ey,
-                          &ez);
+          bw_wall_contact(P, xj, yj, zj, &ux, &uy, &uz, bstart, bx, by, bz, bnx, bny, bnz, bvx, bvy, bvz, bsolid,
+                          one_sided, i, &ex, &ey, &ez);
           jx += ex, jy += ey, jz += ez;
         }
       }

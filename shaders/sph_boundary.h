@@ -90,7 +90,8 @@ static inline void bw_wall_contact(SimParams P, float xi, float yi, float zi, fl
                                    __global const uint* bstart, __global const float* bx, __global const float* by,
                                    __global const float* bz, __global const float* bnx, __global const float* bny,
                                    __global const float* bnz, __global const float* bvx, __global const float* bvy,
-                                   __global const float* bvz, uint target, float* tx, float* ty, float* tz) {
+                                   __global const float* bvz, __global const uint* bsolid,
+                                   __global const uint* one_sided, uint target, float* tx, float* ty, float* tz) {
   const int cx = bw_cell_coord(xi, P.ox, P.inv_cell, P.nx);
   const int cy = bw_cell_coord(yi, P.oy, P.inv_cell, P.ny);
   const int cz = bw_cell_coord(zi, P.oz, P.inv_cell, P.nz);
@@ -111,8 +112,15 @@ static inline void bw_wall_contact(SimParams P, float xi, float yi, float zi, fl
           if (r2 <= 0.0f) continue;
           dn = sqrt(r2);
           nx = dx / dn, ny = dy / dn, nz = dz / dn;
-        } else if (dn < 0.0f) {  // the particle is on the other side of the surface
-          dn = -dn, nx = -nx, ny = -ny, nz = -nz;
+        } else if (dn < 0.0f) {
+          // Behind b's plane. A surface alone is wetted on both sides: the particle is on
+          // the other side, kept from crossing back. A volume's surface lies half a
+          // spacing beyond its particles: up to there the particle is in the surface's
+          // layer and may only leave it the way it came; further it is on the far side
+          // of a part two cells thick.
+          const uint o = bsolid[b];
+          const bool volume = o >= P.static_owners || one_sided[o] != 0u;
+          if (!volume || dn <= -P.layer) dn = -dn, nx = -nx, ny = -ny, nz = -nz;
         }
         if (dn >= P.contact || r2 - dn * dn >= patch2) continue;
         // Static patches have bv = 0, and v - 0 is v exactly.

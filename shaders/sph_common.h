@@ -57,6 +57,8 @@ typedef struct {
   float hx, hy, hz; // rho0^2 g / (gamma k): rho_H(x_j) - rho_H(x_i) = H.(x_j - x_i), the hydrostatic part
   float contact;    // contact distance to a solid's surface (m), fluid_integrate
   float patch;      // radius of the surface patch a boundary particle stands for (m)
+  float layer;      // half a spacing: how far a solid's surface lies beyond its particles' plane (m)
+  uint static_owners;  // owners (bsolid) below this are the scene's solids, from it on bodies
   float gx, gy, gz; // gravity (m/s^2)
   // grid: cubic cells of edge `cell` from `origin`; the domain is the grid's box
   float ox, oy, oz;

@@ -540,6 +540,7 @@ Setup prepare(const scene::Scene& s, double end_time) {
                  s.path, i, sampled.grid.spacing, solid.scale, effective, kMaxSolidSpacingRatio, p.spacing,
                  p.spacing / solid.scale);
     bset.solid_spacing.push_back(effective);
+    bset.one_sided.push_back(sampled.has_voxels && !sampled.voxels.empty() ? 1 : 0);
     out.materials.push_back({solid.friction, solid.restitution, effective});
     const Eigen::Quaterniond q = solid.rotation();
     const std::vector<Vec3d> positions = sampled.surface_positions();

@@ -109,6 +109,10 @@ struct BoundarySet {
   std::vector<float> nx, ny, nz;  // unit normal of the solid's surface at each particle (0 when unknown)
   std::vector<float> flatness;    // of the surface there (surface_normals; contacts with bodies)
   std::vector<std::uint32_t> solid;  // index of the scene solid of each particle
+  // Per scene solid, 1 when it was sampled with its volume: its mesh is closed and
+  // oriented, and fluid belongs only on its normals' side (wall contact, sph_boundary.h).
+  // 0 for a surface alone, which fluid may wet on either side.
+  std::vector<std::uint32_t> one_sided;
   std::vector<std::size_t> per_solid;  // kept particles per solid (0 for dynamic solids)
   std::size_t dropped = 0;      // farther than h outside the domain: never touch fluid
   std::vector<double> solid_spacing;   // effective sampling spacing (file spacing x scale)

@@ -60,6 +60,7 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   P.hz = static_cast<float>(hydrostatic.z());
   P.contact = static_cast<float>(kContactDistance * p.spacing);
   P.patch = static_cast<float>(kPatchRadius * p.spacing);
+  P.layer = static_cast<float>(0.5 * p.spacing);
   P.gx = static_cast<float>(p.gravity.x());
   P.gy = static_cast<float>(p.gravity.y());
   P.gz = static_cast<float>(p.gravity.z());
@@ -184,6 +185,9 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   s.bny = s.floats(nb, "boundary normal y");
   s.bnz = s.floats(nb, "boundary normal z");
   s.bsolid = s.uints(nb, "boundary solid");
+  P.static_owners = static_cast<std::uint32_t>(bset.one_sided.size());
+  s.one_sided = s.uints(std::max<std::size_t>(1, bset.one_sided.size()), "one-sided solids");
+  if (!bset.one_sided.empty()) context.write_vector(s.one_sided, bset.one_sided);
   {
     Buffer ux = s.floats(nb, "boundary x (unsorted)"), uy = s.floats(nb, "boundary y (unsorted)"),
            uz = s.floats(nb, "boundary z (unsorted)"), us = s.uints(nb, "boundary solid (unsorted)");
@@ -362,8 +366,8 @@ StepInfo Solver::step(double t_target) {
   if (s.sensors) s.sample_sensors(s.t, lands ? t_target : s.t + dt);
   if (s.fracture) s.fracture_load(dt);
   s.integrate.args(s.P, s.n, static_cast<float>(dt), s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.ax, s.ay,
-                   s.az, s.phi, s.bstart, s.bx, s.by, s.bz, s.bnx, s.bny, s.bnz, s.bvx, s.bvy, s.bvz, s.hold[f],
-                   s.emitter_table);
+                   s.az, s.phi, s.bstart, s.bx, s.by, s.bz, s.bnx, s.bny, s.bnz, s.bvx, s.bvy, s.bvz, s.bsolid,
+                   s.one_sided, s.hold[f], s.emitter_table);
   s.ctx.launch(s.integrate, s.n);
   s.emitted_energy += held_power * dt;
   s.pending_dt += dt;

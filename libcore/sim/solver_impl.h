@@ -149,6 +149,7 @@ struct Solver::Impl {
   double density_dt = 0;   // the step the last density launch integrated
   // boundary
   Buffer bx, by, bz, bpsi, bpt, bvx, bvy, bvz, bnx, bny, bnz, bsolid, bstart;
+  Buffer one_sided;  // per scene solid (BoundarySet::one_sided); bodies' owners are all one-sided
   std::uint32_t nb = 0;
   ParticleArrays boundary_host;
   // reductions

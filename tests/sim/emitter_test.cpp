@@ -9,6 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "io/frame_file.h"
+#include "io/particles_file.h"
+#include "mesh/shapes.h"
+#include "sample/sampler.h"
 #include "io/run_file.h"
 #include "scene/scene.h"
 #include "sim/setup.h"
@@ -220,6 +223,43 @@ TEST_P(Walls, StopParticlesShotAtThemUpToTheSpeedOfSound) {
     }
   }
 }
+
+// A particle a little behind the plane of a solid's top particles, moving down. A solid
+// sampled with its volume has its surface half a spacing above those particles: the
+// particle is in the surface's layer and may only leave it upward (a particle pressed
+// past the plane used to be held there, and let sink). A box's surface sampled alone
+// is a tank's wall, wetted inside: below its top particles the particle is inside the
+// tank and falls freely.
+class SurfaceLayer : public ::testing::TestWithParam<bool> {};
+
+TEST_P(SurfaceLayer, ParticleBehindATopPatchSinksOnlyIntoATank) {
+  const bool volume = GetParam();
+  test::TempDir dir;
+  SampledSolid box = sample::sample_mesh(mesh::box(Vec3d::Zero(), Vec3d::Constant(0.06)),
+                                         {kSpacing, volume, "box", 1.0});
+  write_particles(box, dir.file("box.h5"), "emitter test");
+  // The top face's particles lie at z = 0.055; the particle starts at 0.0535, 0.15
+  // spacings below them, between four of them.
+  std::ofstream(dir.file("layer.toml"))
+      << "spacing = 0.01\ngravity = [0, 0, 0]\n[time]\nend = 0.02\nframe_rate = 100\n[domain]\n"
+         "min = [-0.03, -0.03, -0.03]\nmax = [0.09, 0.09, 0.09]\n[fluid]\nc0 = 20\n"
+         "[[fluid.block]]\nmin = [0.025, 0.025, 0.0485]\nmax = [0.035, 0.035, 0.0585]\nvelocity = [0, 0, -1]\n"
+         "[[solid]]\nparticles = \"box.h5\"\n";
+  test::run_scene(dir.file("layer.toml"), dir.file("layer"));
+  const FrameData start = read_frame(frame_file_name(dir.file("layer/frames"), 0));
+  const FrameData end = read_frame(frame_file_name(dir.file("layer/frames"), 2));
+  ASSERT_EQ(start.fluid_count(), 1u);
+  ASSERT_EQ(end.fluid_count(), 1u);
+  EXPECT_NEAR(start.z[0], 0.0535, 1e-6);
+  test::figure(volume ? "volume: z at 0.02 s" : "surface: z at 0.02 s", end.z[0]);
+  if (volume)
+    EXPECT_GE(end.z[0], start.z[0] - 1e-5) << "sank into the solid";
+  else
+    EXPECT_LT(end.z[0], start.z[0] - 0.5 * kSpacing) << "held at the tank's wall from inside";
+}
+
+INSTANTIATE_TEST_SUITE_P(Contact, SurfaceLayer, ::testing::Bool(),
+                         [](const ::testing::TestParamInfo<bool>& param) { return param.param ? "Volume" : "Surface"; });
 
 INSTANTIATE_TEST_SUITE_P(Density, Walls,
                          ::testing::Values("density = \"summation\"", "density = \"continuity\"",
