@@ -117,7 +117,9 @@ static inline void bw_wall_contact(SimParams P, float xi, float yi, float zi, fl
           // the other side, kept from crossing back. A volume's surface lies half a
           // spacing beyond its particles: up to there the particle is in the surface's
           // layer and may only leave it the way it came; further it is on the far side
-          // of a part two cells thick.
+          // of a part two cells thick. (Half the scene's spacing, P.layer: a solid
+          // sampled coarser, up to 1.5 times, has a deeper layer whose last quarter
+          // spacing still counts as the far side.)
           const uint o = bsolid[b];
           const bool volume = o >= P.static_owners || one_sided[o] != 0u;
           if (!volume || dn <= -P.layer) dn = -dn, nx = -nx, ny = -ny, nz = -nz;
