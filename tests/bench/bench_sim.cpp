@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -80,6 +81,17 @@ bw::sim::RunOptions quiet_options(const bw::test::TempDir& dir) {
   return options;
 }
 
+// Each kernel's ms per step over `steps` steps, every launch profiled (waited for).
+std::vector<std::pair<std::string, double>> profile_steps(bw::sim::Solver& solver, int steps) {
+  solver.context().set_profiling(true);
+  solver.context().reset_kernel_times();
+  for (int i = 0; i < steps; ++i) solver.step(10.0);
+  std::vector<std::pair<std::string, double>> out;
+  for (const auto& k : solver.context().kernel_times()) out.emplace_back(k.name, 1e3 * k.seconds / steps);
+  solver.context().set_profiling(false);
+  return out;
+}
+
 Result run_case(const bw::compute::DeviceInfo& device, int n, bool profile, double simulate_seconds,
                const std::string& density, double diffusion) {
   bw::Stopwatch setup;
@@ -121,17 +133,13 @@ Result run_case(const bw::compute::DeviceInfo& device, int n, bool profile, doub
   r.ns_per_particle_step = 1e9 / r.best;
 
   if (profile) {
-    solver.context().set_profiling(true);
-    solver.context().reset_kernel_times();
-    for (int i = 0; i < kSteps; ++i) solver.step(10.0);
-    for (const auto& k : solver.context().kernel_times()) r.step_ms += 1e3 * k.seconds / kSteps;
+    const auto kernels = profile_steps(solver, kSteps);
+    for (const auto& [name, ms] : kernels) r.step_ms += ms;
     std::printf("  time per step by kernel (profiled, each launch waited for):\n");
-    for (const auto& k : solver.context().kernel_times()) {
-      const double ms = 1e3 * k.seconds / kSteps;
+    for (const auto& [name, ms] : kernels) {
       if (ms < 0.005 * r.step_ms) continue;
-      std::printf("    %-20s %7.2f ms  %5.1f%%\n", k.name.c_str(), ms, 100 * ms / r.step_ms);
+      std::printf("    %-20s %7.2f ms  %5.1f%%\n", name.c_str(), ms, 100 * ms / r.step_ms);
     }
-    solver.context().set_profiling(false);
   }
 
   if (simulate_seconds > 0) {
@@ -151,14 +159,9 @@ Result run_case(const bw::compute::DeviceInfo& device, int n, bool profile, doub
 
 // ms per step in the kernel `name` over `steps` profiled steps.
 double kernel_ms(bw::sim::Solver& solver, const std::string& name, int steps) {
-  solver.context().set_profiling(true);
-  solver.context().reset_kernel_times();
-  for (int i = 0; i < steps; ++i) solver.step(10.0);
-  double ms = 0;
-  for (const auto& k : solver.context().kernel_times())
-    if (k.name == name) ms = 1e3 * k.seconds / steps;
-  solver.context().set_profiling(false);
-  return ms;
+  for (const auto& [kernel, ms] : profile_steps(solver, steps))
+    if (kernel == name) return ms;
+  return 0;
 }
 
 // The density diffusion's own cost: the density pass of the case with it and of the
