@@ -227,7 +227,8 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
           // The diffusion's weight x_ji . grad W / (r^2 + eta^2): spiky's gradient does not
           // vanish at r = 0, and without eta two close particles would diffuse without bound.
           // rate (rti - rtj - hyd) / rho_j with rtj = rho0 + (rho_j - rho0) / sj, with one
-          // division.
+          // division, taken as a reciprocal so that it need not wait for the numerator
+          // (docs/performance.md).
           const vfloat r = r2 * ir;
 #if BW_WALL_STEP_ON
           const vfloat phij = VLOAD(phi + j);
@@ -238,7 +239,7 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
           const vfloat num = (rti - rhoj - hyd) * r;
           const vfloat den = (r2 + eta2) * rhoj;
 #endif
-          sd += select((vfloat)0.0f, q * q * (vij * ir + P.diffusion * num / den), ok);
+          sd += select((vfloat)0.0f, q * q * (vij * ir + P.diffusion * num * (1.0f / den)), ok);
 #else
           sd += select((vfloat)0.0f, q * q * (vij * ir), ok);
 #endif
