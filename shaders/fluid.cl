@@ -60,14 +60,16 @@ static inline vfloat bw_spiky_change(float h, float min_r2, vfloat r2, vfloat d2
 #define BW_WALL_REDUCED(rho0, rho, phi) ((rho0) + ((rho) - (rho0)) / (1.0f + BW_WALL_STEP * (phi)))
 
 // Akinci's Psi_b = rho0 / sum_k W(x_bk), the sum over the boundary particles k of the
-// same owner, a static solid or a body (including b): the fluid mass a boundary
-// particle stands for. W is the boundary kernel, W_spiky.
+// same owner, a static solid or a body (including b), on b's side of the part
+// (bw_psi_sum): the fluid mass a boundary particle stands for. W is the boundary
+// kernel, W_spiky.
 __kernel void boundary_psi(SimParams P, uint nb, __global const uint* bstart, __global const float* bx,
-                           __global const float* by, __global const float* bz, __global const uint* bsolid,
+                           __global const float* by, __global const float* bz, __global const float* bnx,
+                           __global const float* bny, __global const float* bnz, __global const uint* bsolid,
                            __global float* bpsi) {
   const uint i = get_global_id(0);
   if (i >= nb) return;
-  bpsi[i] = P.rho0 / bw_psi_sum(P, i, bstart, bx, by, bz, bsolid);
+  bpsi[i] = P.rho0 / bw_psi_sum(P, i, bstart, bx, by, bz, bnx, bny, bnz, bsolid);
 }
 
 // The boundary fraction phi = sum_b Psi_b W_spiky(x_ib) / rho0 of every particle at

@@ -142,14 +142,15 @@ __kernel void boundary_gather(uint nb, __global const uint* order, __global cons
 // Psi_b (fluid.cl, boundary_psi) of the sorted particles whose owner is marked in
 // `dirty` (ndirty owners): written in sorted and in master order.
 __kernel void boundary_psi_owners(SimParams P, uint nb, __global const uint* bstart, __global const float* bx,
-                                  __global const float* by, __global const float* bz, __global const uint* bsolid,
+                                  __global const float* by, __global const float* bz, __global const float* bnx,
+                                  __global const float* bny, __global const float* bnz, __global const uint* bsolid,
                                   __global const uint* order, uint ndirty, __global const uint* dirty,
                                   __global float* bpsi, __global float* mpsi) {
   const uint i = get_global_id(0);
   if (i >= nb) return;
   const uint owner = bsolid[i];
   if (owner >= ndirty || dirty[owner] == 0) return;
-  const float psi = P.rho0 / bw_psi_sum(P, i, bstart, bx, by, bz, bsolid);
+  const float psi = P.rho0 / bw_psi_sum(P, i, bstart, bx, by, bz, bnx, bny, bnz, bsolid);
   bpsi[i] = psi;
   mpsi[order[i]] = psi;
 }

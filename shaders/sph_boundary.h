@@ -52,10 +52,19 @@ static inline float2 bw_wall_cap(SimParams P, float pt, float rho) {
 static inline float bw_wall_term(float bpt, float2 cap, float r) { return fmin(bpt, cap.x + cap.y * r); }
 
 // Akinci's sum_k W_spiky(x_bk) over the boundary particles k of b's owner around the
-// sorted boundary particle i (Psi_b = rho0 / the sum).
+// sorted boundary particle i (Psi_b = rho0 / the sum), leaving out the particles of a
+// face turned away from b's (normals more than 120 degrees apart, BW_PSI_OPPOSED): the
+// other side of a part as thin as a spacing, which the fluid at b's face does not
+// reach (at h = 2 spacings it lies h from b's first fluid layer) and which would make b
+// stand for less fluid than gamma1's calibration assumes (a tank wall two spacings
+// thick sampled on both faces weighed 13% less). Particles without a normal (both
+// faces of a part thinner than a cell) count.
+#define BW_PSI_OPPOSED (-0.5f)
 static inline float bw_psi_sum(SimParams P, uint i, __global const uint* bstart, __global const float* bx,
-                               __global const float* by, __global const float* bz, __global const uint* bsolid) {
+                               __global const float* by, __global const float* bz, __global const float* bnx,
+                               __global const float* bny, __global const float* bnz, __global const uint* bsolid) {
   const float xi = bx[i], yi = by[i], zi = bz[i];
+  const float nxi = bnx[i], nyi = bny[i], nzi = bnz[i];
   const uint solid = bsolid[i];
   const int cx = bw_cell_coord(xi, P.ox, P.inv_cell, P.nx);
   const int cy = bw_cell_coord(yi, P.oy, P.inv_cell, P.ny);
@@ -67,7 +76,7 @@ static inline float bw_psi_sum(SimParams P, uint i, __global const uint* bstart,
       const int row = bw_cell_index(0, gy, gz, P.nx, P.ny);
       const uint s = bstart[row + x0], e = bstart[row + x1 + 1];
       for (uint j = s; j < e; ++j) {
-        if (bsolid[j] != solid) continue;
+        if (bsolid[j] != solid || nxi * bnx[j] + nyi * bny[j] + nzi * bnz[j] < BW_PSI_OPPOSED) continue;
         const float dx = xi - bx[j], dy = yi - by[j], dz = zi - bz[j];
         const float r = sqrt(dx * dx + dy * dy + dz * dz);
         if (r < P.h) sum += P.spiky * (P.h - r) * (P.h - r) * (P.h - r);

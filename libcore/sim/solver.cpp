@@ -221,7 +221,7 @@ Solver::Solver(const Setup& setup, compute::Context& context)
     }
     s.cell_starts.args(s.nb, s.ncells, bkeys, s.bstart);
     context.launch(s.cell_starts, nb + 1);
-    s.psi.args(P, s.nb, s.bstart, s.bx, s.by, s.bz, s.bsolid, s.bpsi);
+    s.psi.args(P, s.nb, s.bstart, s.bx, s.by, s.bz, s.bnx, s.bny, s.bnz, s.bsolid, s.bpsi);
     context.launch(s.psi, s.nb);
     context.finish();
   }

@@ -16,6 +16,14 @@ namespace bw::test {
 // block [spacing, k spacing] (k <= n) rests one spacing from them.
 void write_tank(const std::string& path, const Eigen::Vector3i& n, double spacing);
 
+// A closed tank whose walls are `thickness` thick, sampled on both faces as the example
+// tanks are (examples/meshes/spheric_tank.obj): the cavity [0, n spacing] per axis (its
+// faces on the sampling grid's planes), the outer faces `thickness` beyond. The inner
+// faces' particles lie half a spacing inside the walls, so a fluid block [0, k spacing]
+// (k <= n) rests one spacing from them; at a thickness of two spacings the outer faces'
+// particles lie one spacing behind the inner ones.
+void write_thick_tank(const std::string& path, const Eigen::Vector3i& n, double spacing, double thickness);
+
 // Outer size of that tank.
 Vec3d tank_size(const Eigen::Vector3i& n, double spacing);
 
