@@ -28,18 +28,6 @@ bw::TriMesh house(double width, double depth, double wall_height, double roof_he
   return m;
 }
 
-// A sealed tank: the solid between the box [inner_min, inner_max] and that box grown
-// by `wall` on every side (two closed surfaces: the outer one facing out, the
-// cavity's facing into it), so that nothing splashes out of it.
-bw::TriMesh sealed_box(const Vec3d& inner_min, const Vec3d& inner_max, double wall) {
-  bw::TriMesh m = mesh::box(inner_min - Vec3d::Constant(wall), inner_max + Vec3d::Constant(wall));
-  const bw::TriMesh cavity = mesh::box(inner_min, inner_max);
-  const auto offset = static_cast<int>(m.vertices.size());
-  m.vertices.insert(m.vertices.end(), cavity.vertices.begin(), cavity.vertices.end());
-  for (auto t : cavity.triangles) m.triangles.push_back({t[0] + offset, t[2] + offset, t[1] + offset});
-  return m;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -70,7 +58,7 @@ int main(int argc, char** argv) {
     // splashes must stay in; a baffle across it, 4 cm thick and 0.2 m high; a sheet of
     // the same size only 1 cm thick (one cell of bw-sample's grid at a spacing of
     // 0.01 m: both faces in the same boundary particles).
-    mesh::export_mesh(sealed_box({0, 0, 0}, {0.6, 0.1, 1.0}, 0.04), dir + "/sealed.obj");
+    mesh::export_mesh(mesh::sealed_box({0, 0, 0}, {0.6, 0.1, 1.0}, 0.04), dir + "/sealed.obj");
     mesh::export_mesh(mesh::box({0, 0, 0}, {0.04, 0.1, 0.2}), dir + "/baffle.obj");
     mesh::export_mesh(mesh::box({0, 0, 0}, {0.01, 0.1, 0.2}), dir + "/sheet.obj");
     // Scene 4: a flume for the flood among four houses: cavity 8 x 8.4 x 1.6 m, open
@@ -90,7 +78,7 @@ int main(int argc, char** argv) {
     // water at x = 0.8245 (the experiment's box is 0.161 x 0.403 x 0.161 m: these sizes put
     // every face on a cell plane of bw-sample's grid at 0.02 and 0.01 m, so the fluid meets
     // the face where the sensors are).
-    mesh::export_mesh(sealed_box({0, 0, 0}, {3.22, 1.0, 1.0}, 0.04), dir + "/spheric_tank.obj");
+    mesh::export_mesh(mesh::sealed_box({0, 0, 0}, {3.22, 1.0, 1.0}, 0.04), dir + "/spheric_tank.obj");
     mesh::export_mesh(mesh::box({0.6645, 0.297, 0}, {0.8245, 0.697, 0.16}), dir + "/spheric_box.obj");
     // A crate, 0.1 m cube, for the floating-body scene.
     mesh::export_mesh(mesh::box({0, 0, 0}, {0.1, 0.1, 0.1}), dir + "/crate.obj");

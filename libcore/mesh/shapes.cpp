@@ -205,6 +205,18 @@ TriMesh open_box(const Vec3d& inner_min, const Vec3d& inner_max, double wall) {
   return mesh;
 }
 
+TriMesh sealed_box(const Vec3d& inner_min, const Vec3d& inner_max, double wall) {
+  if (!(wall > 0) || (inner_max.array() <= inner_min.array()).any()) {
+    fail_input("sealed_box: needs inner_min < inner_max and a positive wall thickness");
+  }
+  TriMesh mesh = box(inner_min - Vec3d::Constant(wall), inner_max + Vec3d::Constant(wall));
+  const TriMesh cavity = box(inner_min, inner_max);
+  const auto base = static_cast<std::int32_t>(mesh.vertices.size());
+  mesh.vertices.insert(mesh.vertices.end(), cavity.vertices.begin(), cavity.vertices.end());
+  for (const Triangle& t : cavity.triangles) mesh.triangles.push_back({base + t[0], base + t[2], base + t[1]});
+  return mesh;
+}
+
 TriMesh heightfield(const Eigen::Vector2d& min_xy, const Eigen::Vector2d& max_xy, int nx, int ny, double z_bottom,
                     const std::function<double(double, double)>& height) {
   if (nx < 1 || ny < 1) fail_input("heightfield: needs at least one quad along x and y");

@@ -25,6 +25,10 @@ TriMesh extrude(const std::vector<Eigen::Vector2d>& polygon, double z0, double z
 // top face z = inner_max.z) and that box grown by `wall` on every side but the top.
 // One closed, outward-oriented surface: outer faces, rim, inner faces.
 TriMesh open_box(const Vec3d& inner_min, const Vec3d& inner_max, double wall);
+// A sealed tank: the solid between the box [inner_min, inner_max] and that box grown
+// by `wall` on every side. Two closed surfaces: the outer one facing out, the
+// cavity's facing into it.
+TriMesh sealed_box(const Vec3d& inner_min, const Vec3d& inner_max, double wall);
 // A terrain block: the top surface z = height(x, y) sampled on nx x ny quads over
 // [min_xy, max_xy], closed by four vertical sides and a flat bottom at z_bottom
 // (which must lie below every height).

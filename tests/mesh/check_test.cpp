@@ -78,12 +78,19 @@ TEST(MeshCheck, CountsComponents) {
 
 namespace {
 
-TEST(Shapes, OpenBoxAndHeightfieldBoundTheirVolumes) {
+TEST(Shapes, OpenBoxSealedBoxAndHeightfieldBoundTheirVolumes) {
   const auto tank = bw::mesh::open_box({0, 0, 0}, {2, 1, 1}, 0.1);
   const auto report = bw::mesh::check_mesh(tank);
   EXPECT_TRUE(report.bounds_volume()) << report.summary();
   // Outer 2.2 x 1.2 x 1.1 minus the 2 x 1 x 1 cavity.
   EXPECT_NEAR(bw::mesh::mass_properties(tank).volume, 2.2 * 1.2 * 1.1 - 2.0, 1e-12);
+
+  // A sealed tank: two surfaces, the cavity's facing into it.
+  const auto sealed = bw::mesh::sealed_box({0, 0, 0}, {2, 1, 1}, 0.1);
+  const auto sealed_report = bw::mesh::check_mesh(sealed);
+  EXPECT_TRUE(sealed_report.bounds_volume()) << sealed_report.summary();
+  EXPECT_EQ(sealed_report.components, 2u);
+  EXPECT_NEAR(bw::mesh::mass_properties(sealed).volume, 2.2 * 1.2 * 1.2 - 2.0, 1e-12);
 
   const auto terrain = bw::mesh::heightfield({0, 0}, {2, 1}, 20, 10, -1,
                                              [](double x, double y) { return 0.5 + 0.25 * x + 0.1 * y * y; });

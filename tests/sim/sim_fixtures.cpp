@@ -17,13 +17,7 @@ void write_tank(const std::string& path, const Eigen::Vector3i& n, double spacin
 }
 
 void write_thick_tank(const std::string& path, const Eigen::Vector3i& n, double spacing, double thickness) {
-  const Vec3d cavity = n.cast<double>() * spacing;
-  TriMesh tank = mesh::box(Vec3d::Constant(-thickness), cavity + Vec3d::Constant(thickness));
-  // The cavity's faces, turned inward (the solid lies outside them).
-  const TriMesh inner = mesh::box(Vec3d::Zero(), cavity);
-  const auto base = static_cast<std::int32_t>(tank.vertices.size());
-  tank.vertices.insert(tank.vertices.end(), inner.vertices.begin(), inner.vertices.end());
-  for (const Triangle& t : inner.triangles) tank.triangles.push_back({base + t[0], base + t[2], base + t[1]});
+  TriMesh tank = mesh::sealed_box(Vec3d::Zero(), n.cast<double>() * spacing, thickness);
   SampledSolid solid = sample::sample_mesh(std::move(tank), {spacing, false, "thick tank", 1.0});
   write_particles(solid, path, "sim test");
 }
