@@ -328,8 +328,8 @@ void Solver::Impl::update_boundary() {
       dirty[r.body_owner0 + k] = 1, any = true;
   if (any) {
     ctx.write_vector(r.dirty, dirty);
-    r.psi.args(P, total, bstart, bx, by, bz, bnx, bny, bnz, bsolid, r.order, static_cast<std::uint32_t>(dirty.size()), r.dirty, bpsi,
-               r.mpsi);
+    r.psi.args(P, total, bstart, bx, by, bz, bnx, bny, bnz, bsolid, r.order, static_cast<std::uint32_t>(dirty.size()),
+               r.dirty, bpsi, r.mpsi);
     ctx.launch(r.psi, total);
     if (r.static_psi_dirty) r.spsi = ctx.read_vector<float>(r.mpsi, r.ns);
     r.static_psi_dirty = false;
