@@ -1,8 +1,9 @@
 // Turning a triangle mesh into particles (method.md 2.1).
 //
 // The mesh's bounding box is divided into cubic cells of edge `spacing`. Surface
-// sampling marks every cell that a triangle overlaps (exact triangle-box test) and
-// puts one boundary particle at its centre. Volume sampling also marks the cells
+// sampling marks every cell that a triangle overlaps (exact triangle-box test), and
+// the cells behind concave edges whose faces lie on cell planes, and puts one
+// boundary particle at each centre. Volume sampling also marks the cells
 // whose centre lies inside the closed mesh ("voxels"), by exact ray parity with a
 // symbolic perturbation, so that rays through vertices and along edges, and faces
 // lying on cell planes, are all counted right. Cost: proportional to the cells the
@@ -44,7 +45,9 @@ SampleEstimate estimate(const TriMesh& mesh, const SampleGrid& grid, bool volume
 // Cells that a triangle overlaps, sorted by (k, j, i), without duplicates. A face
 // lying exactly on a cell plane (axis-aligned) marks only the cells on its inner
 // side (against its normal), so boundary particles stay inside the solid, half a cell
-// from such faces, as they do at the faces of the bounding box.
+// from such faces, as they do at the faces of the bounding box. A cell that faces on
+// two different planes touch only along an edge or at a corner, lying behind all of
+// them (the solid's cell at a tank's floor-wall edge), is marked too.
 std::vector<CellIndex> surface_cells(const TriMesh& mesh, const SampleGrid& grid);
 
 // Cells whose centre has a non-zero winding number with respect to the mesh, sorted

@@ -18,16 +18,30 @@ Vec3d to_grid(const Vec3d& p, const SampleGrid& grid) { return to_grid_coordinat
 // exact test decides.
 constexpr double kRangeSlack = 1e-9;
 
+// A cell that a triangle touches only along an edge or at a corner, and the side of
+// the triangle's plane its centre lies on.
+struct Touch {
+  std::uint64_t id;
+  Vec3d normal;  // the triangle's unit normal
+  bool behind;   // the centre lies strictly against the normal (on the solid's side)
+};
+
+// Two faces on different planes: their unit normals are not parallel.
+bool different_planes(const Vec3d& a, const Vec3d& b) { return a.cross(b).squaredNorm() > 1e-12; }
+
 }  // namespace
 
 std::vector<CellIndex> surface_cells(const TriMesh& mesh, const SampleGrid& grid) {
   const std::int64_t nx = grid.dims[0], ny = grid.dims[1], nz = grid.dims[2];
   const auto nf = static_cast<std::int64_t>(mesh.triangles.size());
-  std::vector<std::vector<std::uint64_t>> found(static_cast<std::size_t>(omp_get_max_threads()));
+  const auto threads = static_cast<std::size_t>(omp_get_max_threads());
+  std::vector<std::vector<std::uint64_t>> found(threads);
+  std::vector<std::vector<Touch>> touched(threads);
 
 #pragma omp parallel
   {
     std::vector<std::uint64_t>& mine = found[static_cast<std::size_t>(omp_get_thread_num())];
+    std::vector<Touch>& grazed = touched[static_cast<std::size_t>(omp_get_thread_num())];
     const Vec3d half(0.5, 0.5, 0.5);
 #pragma omp for schedule(dynamic, 4096)
     for (std::int64_t f = 0; f < nf; ++f) {
@@ -65,8 +79,12 @@ std::vector<CellIndex> surface_cells(const TriMesh& mesh, const SampleGrid& grid
             // the plane, i.e. by overlap with the open square of the cell's face.
             Vec3d test_center = center;
             if (plane_axis >= 0) test_center[plane_axis] = lo[plane_axis];
+            const auto id = static_cast<std::uint64_t>((z * ny + y) * nx + x);
             if (mesh::triangle_box_overlap(test_center, half, a, b, c, /*closed=*/false)) {
-              mine.push_back(static_cast<std::uint64_t>((z * ny + y) * nx + x));
+              mine.push_back(id);
+            } else if (mesh::triangle_box_overlap(test_center, half, a, b, c, /*closed=*/true)) {
+              const double length = normal.norm();
+              if (length > 0) grazed.push_back({id, normal / length, normal.dot(center - a) < 0});
             }
           }
     }
@@ -82,6 +100,38 @@ std::vector<CellIndex> surface_cells(const TriMesh& mesh, const SampleGrid& grid
   }
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+
+  // A concave edge or corner whose faces lie on cell planes (a tank's floor meeting its
+  // wall) passes along the cell behind them without entering it, yet that cell is in
+  // the solid and within h of the fluid in the corner: without it the fluid there
+  // misses the edge row that the floor and the wall each stand for, and the floor's
+  // and the walls' rows next to it carry its load (a floor 10 particles across read
+  // +23% along its sides and -1.5% in its middle). It is marked when faces on two
+  // different planes touch it and it lies behind every face that touches it; a
+  // sheet's rim (one plane) and a tank's rim (in front of its top face) are not.
+  std::vector<Touch> grazes;
+  for (auto& v : touched) {
+    grazes.insert(grazes.end(), v.begin(), v.end());
+    std::vector<Touch>().swap(v);
+  }
+  std::sort(grazes.begin(), grazes.end(), [](const Touch& l, const Touch& r) { return l.id < r.id; });
+  std::vector<std::uint64_t> concave;
+  for (std::size_t first = 0; first < grazes.size();) {
+    std::size_t last = first;
+    bool behind = true, two_planes = false;
+    for (; last < grazes.size() && grazes[last].id == grazes[first].id; ++last) {
+      behind = behind && grazes[last].behind;
+      two_planes = two_planes || different_planes(grazes[first].normal, grazes[last].normal);
+    }
+    if (behind && two_planes && !std::binary_search(ids.begin(), ids.end(), grazes[first].id)) {
+      concave.push_back(grazes[first].id);
+    }
+    first = last;
+  }
+  if (!concave.empty()) {
+    ids.insert(ids.end(), concave.begin(), concave.end());
+    std::sort(ids.begin(), ids.end());
+  }
 
   std::vector<CellIndex> cells(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) {

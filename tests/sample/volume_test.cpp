@@ -126,6 +126,46 @@ TEST(SurfaceSampling, FacesOnInnerCellPlanesStayOnTheSolidSide) {
   }
 }
 
+// Where a tank's floor meets its walls the faces on cell planes only graze the cells
+// behind the edge, but those cells are in the solid within h of the fluid in the
+// corner: each concave edge and corner of the cavity has its row of particles, half
+// a cell behind both faces. A tank's rim (a convex edge) and a sheet's rim (one
+// plane) stay as they were.
+TEST(SurfaceSampling, ConcaveEdgesOnCellPlanesHaveTheirRow) {
+  const double s = 0.01;
+  const auto tank = bw::mesh::open_box({0, 0, 0}, {0.1, 0.06, 0.08}, 0.03);
+  const auto solid = sample_volume(tank, s);
+  auto near = [&](double a, double b) { return std::abs(a - b) < 1e-9; };
+  std::size_t floor_edges = 0, wall_edges = 0, corners = 0, above_rim = 0;
+  for (const auto& p : solid.surface_positions()) {
+    const bool x_side = near(p.x(), -0.5 * s) || near(p.x(), 0.1 + 0.5 * s);
+    const bool y_side = near(p.y(), -0.5 * s) || near(p.y(), 0.06 + 0.5 * s);
+    const bool bottom = near(p.z(), -0.5 * s);
+    corners += x_side && y_side && bottom;
+    floor_edges += bottom && (x_side != y_side) && p.x() > -s && p.x() < 0.1 + s && p.y() > -s && p.y() < 0.06 + s;
+    wall_edges += x_side && y_side && !bottom && p.z() > 0;
+    above_rim += p.z() > 0.08;
+  }
+  EXPECT_EQ(corners, 4u);
+  EXPECT_EQ(floor_edges, 2u * 10u + 2u * 6u) << "the floor's four edges, one particle per cell along them";
+  EXPECT_EQ(wall_edges, 4u * 8u) << "the four vertical edges up to the rim";
+  EXPECT_EQ(above_rim, 0u);
+  // Every such particle is a voxel's centre: in the solid, not in the cavity.
+  std::size_t in_cavity = 0;
+  for (const auto& p : solid.surface_positions())
+    in_cavity += p.x() > 0 && p.x() < 0.1 && p.y() > 0 && p.y() < 0.06 && p.z() > 0;
+  EXPECT_EQ(in_cavity, 0u);
+
+  // A square sheet on a cell plane: its own cells and no row beyond its rim.
+  bw::TriMesh sheet;
+  sheet.vertices = {{0, 0, 0.05}, {0.1, 0, 0.05}, {0.1, 0.1, 0.05}, {0, 0.1, 0.05}};
+  sheet.triangles = {{0, 1, 2}, {0, 2, 3}};
+  bw::sample::SampleOptions options;
+  options.spacing = s;
+  options.source = "sheet";
+  EXPECT_EQ(bw::sample::sample_mesh(sheet, options).surface.size(), 100u);
+}
+
 // A mesh read from a file comes with float vertices (assimp's): the SPHERIC box's
 // face at x = 0.8245 m is then 0.82450002, 1.3e-6 of a 0.02 m cell beyond the plane
 // 8 cells from its other face. Its particles still lie half a cell inside every face,
