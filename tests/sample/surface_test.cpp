@@ -5,6 +5,7 @@
 #include <random>
 #include <unordered_map>
 
+#include "mesh/closest_point.h"
 #include "mesh/shapes.h"
 #include "sample/sampler.h"
 #include "test_support.h"
@@ -12,27 +13,6 @@
 namespace {
 
 using bw::Vec3d;
-
-// Distance from p to triangle abc (Ericson, Real-Time Collision Detection 5.1.5).
-double point_triangle_distance(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-  const Vec3d ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return (p - a).norm();
-  const Vec3d bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return (p - b).norm();
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + d1 / (d1 - d3) * ab)).norm();
-  const Vec3d cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return (p - c).norm();
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + d2 / (d2 - d6) * ac)).norm();
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
-  const double denom = 1.0 / (va + vb + vc);
-  return (p - (a + ab * vb * denom + ac * vc * denom)).norm();
-}
 
 // Nearest-point queries over a point set with a hash grid of cell `cell`.
 class PointGrid {
@@ -102,7 +82,7 @@ void check_coverage(const bw::TriMesh& mesh, double spacing, const std::string& 
   for (const Vec3d& p : particles) {
     double d = INFINITY;
     for (const auto& t : mesh.triangles) {
-      d = std::min(d, point_triangle_distance(p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]));
+      d = std::min(d, bw::mesh::point_triangle_distance(p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]));
     }
     worst_off = std::max(worst_off, d);
   }
