@@ -58,9 +58,13 @@ SampleEstimate estimate(const TriMesh& mesh, const SampleGrid& grid, bool volume
   e.voxels = volume ? std::min(std::fabs(props.volume) / (r * r * r), static_cast<double>(grid.cell_count())) : 0;
   const double crossings = volume ? 2.0 * props.area / (r * r) + triangles : 0;
   const double mesh_bytes = 24.0 * static_cast<double>(mesh.vertices.size()) + 12.0 * triangles;
+  // Cells touched without being entered (48 B each, sorted), at most the layer in
+  // front of each face on a cell plane and the cells along the triangles' edges.
+  const double touched = props.area / (r * r) + perimeter / r + 8 * triangles;
   // Candidates (8 B) sorted; cells (12 B) and positions (24 B) while writing;
   // crossings (24 B) sorted; the in-memory copy HDF5 keeps when writing to stdout.
-  e.bytes = 2 * 8 * found + 36 * e.surface_particles + 12 * e.voxels + 2 * 24 * crossings + 2 * mesh_bytes;
+  e.bytes = 2 * 8 * found + 2 * 48 * touched + 36 * e.surface_particles + 12 * e.voxels + 2 * 24 * crossings +
+            2 * mesh_bytes;
   return e;
 }
 

@@ -45,9 +45,10 @@ SampleEstimate estimate(const TriMesh& mesh, const SampleGrid& grid, bool volume
 // Cells that a triangle overlaps, sorted by (k, j, i), without duplicates. A face
 // lying exactly on a cell plane (axis-aligned) marks only the cells on its inner
 // side (against its normal), so boundary particles stay inside the solid, half a cell
-// from such faces, as they do at the faces of the bounding box. A cell that faces on
-// two different planes touch only along an edge or at a corner, lying behind all of
-// them (the solid's cell at a tank's floor-wall edge), is marked too.
+// from such faces, as they do at the faces of the bounding box. A cell that faces
+// touch without entering it is marked too when the faces nearest its centre lie on
+// two different planes and all have it behind them (the solid's cell at a tank's
+// floor-wall edge).
 std::vector<CellIndex> surface_cells(const TriMesh& mesh, const SampleGrid& grid);
 
 // Cells whose centre has a non-zero winding number with respect to the mesh, sorted
