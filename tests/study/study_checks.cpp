@@ -14,6 +14,7 @@
 #include "io/frame_file.h"
 #include "io/particles_file.h"
 #include "io/run_file.h"
+#include "mesh/closest_point.h"
 #include "scene/scene.h"
 
 namespace bw::study {
@@ -254,32 +255,9 @@ HydrostaticError hydrostatic_error(const std::string& run_dir, const Vec3d& poin
 }
 
 double distance_to_surface(const TriMesh& mesh, const Vec3d& p) {
-  // Closest point on each triangle (Ericson, Real-Time Collision Detection, 5.1.5).
   double best = std::numeric_limits<double>::infinity();
   for (const Triangle& t : mesh.triangles) {
-    const Vec3d a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
-    const Vec3d ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    Vec3d q;
-    if (d1 <= 0 && d2 <= 0) {
-      q = a;
-    } else {
-      const Vec3d bp = p - b;
-      const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-      const Vec3d cp = p - c;
-      const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-      const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
-      if (d3 >= 0 && d4 <= d3) q = b;
-      else if (vc <= 0 && d1 >= 0 && d3 <= 0) q = a + ab * (d1 / (d1 - d3));
-      else if (d6 >= 0 && d5 <= d6) q = c;
-      else if (vb <= 0 && d2 >= 0 && d6 <= 0) q = a + ac * (d2 / (d2 - d6));
-      else if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) q = b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-      else {
-        const double denom = 1 / (va + vb + vc);
-        q = a + ab * (vb * denom) + ac * (vc * denom);
-      }
-    }
-    best = std::min(best, (p - q).norm());
+    best = std::min(best, mesh::point_triangle_distance(p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]));
   }
   return best;
 }
