@@ -96,13 +96,20 @@ double sensor_pressure(const FrameData& frame, const Sensor& sensor) {
   return count ? sum / count : std::numeric_limits<double>::quiet_NaN();
 }
 
-double surface_elevation(const FrameData& frame, double x, double y, double radius) {
-  double top = -std::numeric_limits<double>::infinity();
+double surface_elevation(const FrameData& frame, double x, double y, double radius, double gap, double bottom) {
+  std::vector<double> heights;
   for (std::size_t i = 0; i < frame.x.size(); ++i) {
     const double dx = frame.x[i] - x, dy = frame.y[i] - y;
-    if (dx * dx + dy * dy <= radius * radius) top = std::max(top, double(frame.z[i]));
+    if (dx * dx + dy * dy <= radius * radius) heights.push_back(frame.z[i]);
   }
-  return std::isfinite(top) ? top : std::numeric_limits<double>::quiet_NaN();
+  std::sort(heights.begin(), heights.end());
+  if (heights.empty()) return std::numeric_limits<double>::quiet_NaN();
+  double top = std::isfinite(bottom) ? bottom : heights.front();
+  for (const double z : heights) {
+    if (z - top > gap) break;  // from the bottom: the line is dry; above the lowest: spray
+    top = z;
+  }
+  return top >= heights.front() ? top : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace bw::analysis

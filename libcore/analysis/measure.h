@@ -2,6 +2,7 @@
 // experiments and analytic solutions.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -45,8 +46,16 @@ struct Sensor {
 };
 double sensor_pressure(const FrameData& frame, const Sensor& sensor);
 
-// Highest fluid particle within `radius` of the vertical line through (x, y):
-// the free-surface elevation a wave gauge measures. NaN when there is none.
-double surface_elevation(const FrameData& frame, double x, double y, double radius);
+// The free-surface elevation a wave gauge measures on the vertical line through
+// (x, y): the centre of the highest fluid particle within `radius` of the line that
+// the water column holds, climbing from the lowest particle (or from `bottom`, the
+// floor under the gauge) up through the particles over the line and stopping at the
+// first vertical gap wider than `gap`. A resistance gauge's wire reads the water it
+// stands in, not the spray that flies over it; gap = infinity reads the highest
+// particle. NaN when the line is dry: no particle, or (with a bottom) the lowest
+// more than `gap` above it.
+double surface_elevation(const FrameData& frame, double x, double y, double radius,
+                         double gap = std::numeric_limits<double>::infinity(),
+                         double bottom = -std::numeric_limits<double>::infinity());
 
 }  // namespace bw::analysis

@@ -83,6 +83,27 @@ TEST(Probe, AveragesAFieldAndGaugesTheSurface) {
   EXPECT_NEAR(p, 1000 * 9.81 * 0.05, 5.0);
   EXPECT_TRUE(std::isnan(an::probe(f, an::Field::pressure, {1, 1, 1}, 0.02)));
   EXPECT_NEAR(an::surface_elevation(f, 0.1, 0.1, 0.01), 0.095, 1e-6);
+  EXPECT_TRUE(std::isnan(an::surface_elevation(f, 1, 1, 0.01)));
+}
+
+// A wave gauge reads the water it stands in: a drop flying 0.2 m over the pool (the
+// splash off a structure) is not its surface, and over a dry floor it reads nothing.
+TEST(Probe, AGaugeReadsTheWaterNotTheSprayOverIt) {
+  FrameData f = block({0, 0, 0}, {0.2, 0.2, 0.1}, 0.01, 0);
+  for (float z : {0.3f, 0.31f}) {  // a drop over the pool's middle and one over a dry floor
+    f.x.push_back(0.105f), f.y.push_back(0.105f), f.z.push_back(z);
+    f.x.push_back(0.5f), f.y.push_back(0.5f), f.z.push_back(z);
+  }
+  EXPECT_NEAR(an::surface_elevation(f, 0.1, 0.1, 0.01), 0.31, 1e-6) << "the highest particle";
+  EXPECT_NEAR(an::surface_elevation(f, 0.1, 0.1, 0.01, 0.02), 0.095, 1e-6);
+  EXPECT_NEAR(an::surface_elevation(f, 0.1, 0.1, 0.01, 0.02, 0.0), 0.095, 1e-6);
+  EXPECT_NEAR(an::surface_elevation(f, 0.5, 0.5, 0.01, 0.02), 0.31, 1e-6) << "without a bottom: the drop";
+  EXPECT_TRUE(std::isnan(an::surface_elevation(f, 0.5, 0.5, 0.01, 0.02, 0.0))) << "over a dry floor";
+  // A column with a gap of one missing particle still reads its top.
+  FrameData g = block({0, 0, 0}, {0.01, 0.01, 0.1}, 0.01, 0);
+  g.z.erase(g.z.begin() + 5), g.x.erase(g.x.begin() + 5), g.y.erase(g.y.begin() + 5);
+  EXPECT_NEAR(an::surface_elevation(g, 0.005, 0.005, 0.01, 0.025, 0.0), 0.095, 1e-6);
+  EXPECT_NEAR(an::surface_elevation(g, 0.005, 0.005, 0.01, 0.015, 0.0), 0.045, 1e-6) << "a gap wider than --gap";
   EXPECT_THROW(an::probe(f, an::Field::density, {0.1, 0.1, 0.05}, 0.02), bw::InputError);
 }
 
@@ -155,6 +176,29 @@ TEST(BwMeasure, DambreakThroughTheTool) {
   const auto missing = bw::test::run(tool + " dambreak " + dir.file("nothere") + " --width 0.1 --band 0.02");
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_EQ(bw::test::line_count(missing.err), 1) << missing.err;
+}
+
+// The tool's gauge: by default the column stops at a gap of twice the radius, so the
+// drop over the pool does not count; --bottom makes a line over a dry floor read NaN.
+TEST(BwMeasure, GaugeThroughTheTool) {
+  bw::test::TempDir dir;
+  FrameData f = block({0, 0, 0}, {0.2, 0.2, 0.1}, 0.01, 0);
+  f.x.push_back(0.105f), f.y.push_back(0.105f), f.z.push_back(0.3f);
+  bw::write_frame(f, bw::frame_file_name(dir.path(), 0));
+  const std::string tool = bw::test::tool("bw-measure");
+  const auto pool = bw::test::run(tool + " gauge " + dir.path() + " --at 0.1,0.1 --radius 0.01");
+  ASSERT_EQ(pool.exit_code, 0) << pool.err;
+  EXPECT_EQ(pool.out.rfind("time,elevation\n", 0), 0u) << pool.out;
+  EXPECT_NEAR(std::stod(pool.out.substr(pool.out.find(',', 15) + 1)), 0.095, 1e-6) << pool.out;
+  const auto spray = bw::test::run(tool + " gauge " + dir.path() + " --at 0.1,0.1 --radius 0.01 --gap 1");
+  ASSERT_EQ(spray.exit_code, 0) << spray.err;
+  EXPECT_NEAR(std::stod(spray.out.substr(spray.out.find(',', 15) + 1)), 0.3, 1e-6) << spray.out;
+  const auto dry = bw::test::run(tool + " gauge " + dir.path() + " --at 0.5,0.5 --radius 0.01 --bottom 0");
+  ASSERT_EQ(dry.exit_code, 0) << dry.err;
+  EXPECT_NE(dry.out.find("nan"), std::string::npos) << dry.out;
+  const auto bad = bw::test::run(tool + " gauge " + dir.path() + " --at 0.1,0.1 --radius 0.01 --gap -1");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(bw::test::line_count(bad.err), 1) << bad.err;
 }
 
 }  // namespace

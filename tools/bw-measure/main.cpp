@@ -3,6 +3,7 @@
 // velocity probes, pressure sensors on solids' faces, loads on solids, wave gauges.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 
 #include <fmt/ranges.h>
@@ -28,6 +29,9 @@ struct Options {
   std::vector<double> point;
   std::string field = "p";
   double radius = 0;
+  // gauge
+  double gap = 0;  // 0: 2 radius
+  double bottom = -std::numeric_limits<double>::infinity();
   // sensor
   std::vector<std::string> sensors;  // NAME=x,y,z or x,y,z
   std::vector<double> normal{1, 0, 0};
@@ -117,7 +121,8 @@ int run_probe(const Options& o, bool gauge) {
   const bw::analysis::Field field = bw::analysis::parse_field(o.field);
   for (const std::string& path : list_frames(o.frames)) {
     const bw::FrameData frame = bw::read_frame(path);
-    const double value = gauge ? bw::analysis::surface_elevation(frame, o.point[0], o.point[1], o.radius)
+    const double gap = o.gap > 0 ? o.gap : 2 * o.radius;
+    const double value = gauge ? bw::analysis::surface_elevation(frame, o.point[0], o.point[1], o.radius, gap, o.bottom)
                                : bw::analysis::probe(frame, field, {o.point[0], o.point[1], o.point[2]}, o.radius);
     rows.push_back({frame.time, value});
   }
@@ -303,6 +308,13 @@ int main(int argc, char** argv) {
   gauge->add_option("--radius", o.radius, "Particles within this distance of the line count (m)")
       ->required()
       ->check(bw::cli::kPositive);
+  gauge->add_option("--gap", o.gap,
+                    "The water column ends at the first vertical gap between the line's particles wider than "
+                    "this: spray over the water does not count (m; default 2 x radius)")
+      ->check(bw::cli::kPositive);
+  gauge->add_option("--bottom", o.bottom,
+                    "The floor under the gauge (m): the line is dry (NaN) until a particle lies within --gap of it "
+                    "(default: the column starts at its lowest particle)");
 
   return bw::cli::run(app, argc, argv, [&] {
     if (dambreak->parsed()) return run_dambreak(o);
