@@ -1,16 +1,21 @@
 #!/usr/bin/env bash
 # SPHERIC Test 2's report (Makefile.scenes `spheric2`, docs/validation.md "Impact
-# pressure"): from the sensors' histories (bw-measure sensor: time,P1,P2,P3,P4 in Pa)
-# and the experiment's table (examples/data/spheric-test2-pressure.txt), per sensor
+# pressure"): from the sensors' histories (bw-measure sensor: time,P1,P2,P3,P4 in Pa),
+# the experiment's table (examples/data/spheric-test2-pressure.txt) and its measured
+# histories (spheric-test2-histories.csv beside the table, or SPHERIC_HISTORIES), per
+# sensor
 #   rise     the first time the pressure passes 1 kPa (a tenth of the peaks: the
 #            water has reached the sensor), against the experiment's first rise
 #   peak     the largest pressure and when, against the experiment's
 #   mean, sd the mean and standard deviation over 0.45-0.55 s, where the flow runs
-#            steadily up the face and a smooth solver reads a steady load
+#            steadily up the face and a smooth solver reads a steady load; the mean
+#            against the experiment's over the same span
 #   noise    the RMS of the change from one sample to the next over the same span,
-#            over the mean: the acoustic noise (a steady load gives 0)
+#            over the mean: the acoustic noise (a steady load gives 0); the
+#            experiment's the same, from its record averaged over the run's sample
+#            interval
 # Writes PREFIX.csv (one row per sensor), PREFIX.md (a Markdown table) and PREFIX.png
-# (the four histories with the experiment's rise and peak marked).
+# (the four histories against the experiment's).
 #
 #   spheric-report.sh sensors.csv spheric-test2-pressure.txt PREFIX SPACING [LABEL=other.csv ...]
 # (other runs' sensors drawn in the plot beside the first, e.g. another density scheme;
@@ -28,10 +33,20 @@ for e in "$@"; do
 done
 [[ -s $sensors ]] || die "$sensors: missing or empty"
 [[ -s $reference ]] || die "$reference: missing or empty"
+histories=${SPHERIC_HISTORIES:-$(dirname "$reference")/spheric-test2-histories.csv}
+[[ -s $histories ]] || die "$histories: missing or empty (the experiment's histories; set SPHERIC_HISTORIES)"
 
 awk -v OFS=, -v spacing="$spacing" '
-  FNR == NR {
+  FILENAME == ARGV[1] {
     if ($0 ~ /^P[0-9]/) { rise[$1] = $2; peak[$1] = $3 * 1000; peak_time[$1] = $4; sub(/^~/, "", peak_time[$1]) }
+    next
+  }
+  FILENAME == ARGV[2] {
+    if ($0 ~ /^#/) next
+    split($0, v, ",")
+    if (v[1] == "time") { for (c = 2; c <= 5; ++c) exp_col[v[c]] = c; next }
+    ++rows; exp_t[rows] = v[1]
+    for (name in exp_col) exp_p[name, rows] = v[exp_col[name]]
     next
   }
   FNR == 1 {
@@ -41,6 +56,7 @@ awk -v OFS=, -v spacing="$spacing" '
   {
     split($0, v, ",")
     t = v[1]
+    if (FNR == 2) t_first = t; else if (FNR == 3) interval = t - t_first
     for (c = 2; c <= n; ++c) {
       p = (v[c] == "nan" || v[c] == "-nan") ? 0 : v[c] + 0
       if (!(c in first) && p > 1000) first[c] = t
@@ -52,8 +68,30 @@ awk -v OFS=, -v spacing="$spacing" '
       }
     }
   }
+  # The experiment over 0.45-0.55 s as the run samples it: its record averaged over
+  # intervals of the sample interval of the run (2.5 ms at 400 a second).
+  function experiment(name,   k, b, bins, m, d, last_b, have) {
+    delete bin_sum; delete bin_n
+    for (k = 1; k <= rows; ++k) {
+      b = int(exp_t[k] / interval)
+      if ((b + 0.5) * interval < 0.45 || (b + 0.5) * interval > 0.55) continue
+      bin_sum[b] += exp_p[name, k]; bin_n[b]++
+    }
+    exp_mean = 0; exp_noise = 0; bins = 0; have = 0
+    for (b = int(0.45 / interval) - 1; b <= int(0.55 / interval) + 1; ++b) {
+      if (!(b in bin_n)) continue
+      m = bin_sum[b] / bin_n[b]
+      exp_mean += m; ++bins
+      if (have) { d = m - last_b; exp_noise += d * d; ++jumps_e }
+      last_b = m; have = 1
+    }
+    if (!bins) { exp_mean = "nan"; exp_noise = "nan"; return }
+    exp_noise = jumps_e ? sqrt(exp_noise / jumps_e) / (exp_mean / bins) : "nan"
+    exp_mean /= bins
+  }
   END {
-    print "sensor,spacing,rise_s,rise_exp_s,rise_error_ms,peak_kpa,peak_time_s,peak_exp_kpa,peak_error,mean_kpa,sd_kpa,noise"
+    if (interval <= 0) { print "spheric-report: the sensors file has fewer than two samples" > "/dev/stderr"; exit 2 }
+    print "sensor,spacing,rise_s,rise_exp_s,rise_error_ms,peak_kpa,peak_time_s,peak_exp_kpa,peak_error,mean_kpa,mean_exp_kpa,mean_error,sd_kpa,noise,noise_exp"
     for (c = 2; c <= n; ++c) {
       s = head[c]
       m = count[c] ? sum[c] / count[c] : 0
@@ -63,31 +101,33 @@ awk -v OFS=, -v spacing="$spacing" '
       r = (c in first) ? first[c] : "nan"
       re = (c in first && s in rise) ? (first[c] - rise[s]) * 1000 : "nan"
       pe = (s in peak && peak[s] > 0) ? best[c] / peak[s] - 1 : "nan"
-      printf "%s,%s,%s,%s,%s,%.3f,%s,%.3f,%s,%.3f,%.3f,%s\n", s, spacing, r, rise[s], re, best[c] / 1000, best_time[c], \
-        peak[s] / 1000, pe, m / 1000, sd / 1000, noise
+      jumps_e = 0
+      if (s in exp_col) experiment(s); else { exp_mean = "nan"; exp_noise = "nan" }
+      me = (exp_mean != "nan" && exp_mean > 0) ? m / exp_mean - 1 : "nan"
+      printf "%s,%s,%s,%s,%s,%.3f,%s,%.3f,%s,%.3f,%s,%s,%.3f,%s,%s\n", s, spacing, r, rise[s], re, best[c] / 1000, best_time[c], \
+        peak[s] / 1000, pe, m / 1000, exp_mean == "nan" ? "nan" : sprintf("%.3f", exp_mean / 1000), me, sd / 1000, noise, exp_noise
     }
-  }' "$reference" "$sensors" > "$prefix.csv.tmp"
+  }' "$reference" "$histories" "$sensors" > "$prefix.csv.tmp"
 mv "$prefix.csv.tmp" "$prefix.csv"
 
 awk -F, '
   NR == 1 {
-    print "| sensor | rise (s) | experiment | error (ms) | peak (kPa) | at (s) | experiment | error | mean 0.45-0.55 s (kPa) | sd | noise |"
-    print "|---|---|---|---|---|---|---|---|---|---|---|"
+    print "| sensor | rise (s) | experiment | error (ms) | peak (kPa) | at (s) | experiment | error | mean 0.45-0.55 s (kPa) | experiment | error | sd | noise | experiment |"
+    print "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
     next
   }
   {
-    printf "| %s | %.4f | %.3f | %+.1f | %.2f | %.4f | %.1f | %+.0f%% | %.2f | %.2f | %.0f%% |\n", $1, $3, $4, $5, $6, $7, $8, \
-      100 * $9, $10, $11, 100 * $12
+    printf "| %s | %.4f | %.3f | %+.1f | %.2f | %.4f | %.1f | %+.0f%% | %.2f | %.2f | %+.0f%% | %.2f | %.0f%% | %.0f%% |\n", $1, $3, $4, $5, $6, \
+      $7, $8, 100 * $9, $10, $11, 100 * $12, $13, 100 * $14, 100 * $15
   }' "$prefix.csv" > "$prefix.md.tmp"
 mv "$prefix.md.tmp" "$prefix.md"
 
 if command -v gnuplot >/dev/null; then
-  # The experiment's marks: (rise, 0) and (peak time, peak) per sensor.
-  awk -v OFS=, '/^P[0-9]/ { t = $4; sub(/^~/, "", t); print $1, $2, 0; print $1, t, $3 }' "$reference" > "$prefix.exp.tmp"
   gnuplot <<EOF
 set terminal pngcairo size 1200,900 font ",10"
 set output "$prefix.png.tmp"
 set datafile separator ","
+set datafile commentschars "#"
 set multiplot layout 2,2 title "SPHERIC Test 2 at spacing $spacing m: pressure on the box's face"
 do for [k=1:4] {
   set title sprintf("P%d", k)
@@ -96,11 +136,10 @@ do for [k=1:4] {
   set xrange [0.3:0.7]
   set yrange [-1:*]
   set key top right
-  plot "$sensors" using 1:(column(k+1) / 1000) with lines lw 1.5 title "${SPHERIC_LABEL:-breakwater}"$extra, \
-       "< grep '^P".k.",' $prefix.exp.tmp" using 2:3 with points pt 7 ps 1.5 lc rgb "black" title "experiment (rise, peak)"
+  plot "$histories" every ::1 using 1:(column(k+1) / 1000) with lines lw 1.5 lc rgb "black" title "experiment", \
+       "$sensors" using 1:(column(k+1) / 1000) with lines lw 1.5 title "${SPHERIC_LABEL:-breakwater}"$extra
 }
 unset multiplot
 EOF
   mv "$prefix.png.tmp" "$prefix.png"
-  rm -f "$prefix.exp.tmp"
 fi
