@@ -52,6 +52,7 @@ void write_particles(const SampledSolid& solid, const std::string& path, const s
   root.set_attr("origin", std::span<const double>(origin));
   root.set_attr("dims", std::span<const std::int32_t>(solid.grid.dims));
   root.set_attr("mesh_volume", solid.mesh_volume);
+  root.set_attr<std::int32_t>("surface_rule", solid.surface_rule);
 
   h5::Group surface = root.create_group("surface");
   const std::uint64_t n = solid.surface.size();
@@ -77,6 +78,7 @@ SampledSolid read_particles(const std::string& path) {
   solid.source = root.has_attr("source") ? root.attr_string("source") : "";
   solid.scale = root.has_attr("scale") ? root.attr<double>("scale") : 1.0;
   solid.mesh_volume = root.has_attr("mesh_volume") ? root.attr<double>("mesh_volume") : 0.0;
+  solid.surface_rule = root.has_attr("surface_rule") ? root.attr<std::int32_t>("surface_rule") : 1;
   solid.grid.spacing = root.attr<double>("spacing");
   if (!(solid.grid.spacing > 0) || !std::isfinite(solid.grid.spacing)) {
     fail_input("{}: spacing {} is not a positive number", file.name(), solid.grid.spacing);

@@ -40,8 +40,14 @@ struct SampleGrid {
   }
 };
 
+// Which surface cells bw-sample marks (the file's `surface_rule`, docs/formats.md):
+// 2 since the cells behind concave edges on cell planes (a tank's floor-wall edge) are
+// surface cells; 1 for files written before, which lack those rows.
+inline constexpr std::int32_t kSurfaceRule = 2;
+
 struct SampledSolid {
   SampleGrid grid;
+  std::int32_t surface_rule = kSurfaceRule;
   // Cells that a triangle of the mesh overlaps: one boundary particle at each centre.
   std::vector<CellIndex> surface;
   // Cells whose centre lies inside the mesh ("voxels"); empty unless has_voxels.

@@ -1,6 +1,7 @@
 #include "sim/setup.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -533,6 +534,14 @@ Setup prepare(const scene::Scene& s, double end_time) {
     } catch (const InputError& e) {
       fail_input("{}: solid[{}].particles: {}", s.path, i, e.what());
     }
+    // Said, not refused: such a run goes on as it ran before, with the corners' load
+    // on the rows beside them, and the warning says how to have it right.
+    if (sampled.surface_rule < kSurfaceRule)
+      fmt::print(stderr,
+                 "bw-sim: warning: {}: solid[{}].particles: {} was sampled without the rows behind its concave edges "
+                 "(surface rule {}, now {}): the fluid in its corners misses the edge's share of the wall; sample it "
+                 "again with bw-sample (docs/formats.md)\n",
+                 s.path, i, solid.particles_given, sampled.surface_rule, kSurfaceRule);
     const double effective = sampled.grid.spacing * solid.scale;
     if (effective > kMaxSolidSpacingRatio * p.spacing * (1 + kLatticeSlack))
       fail_input("{}: solid[{}].particles: sampled at spacing {} (x scale {} = {}), coarser than {} x the scene's "

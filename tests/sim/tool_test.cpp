@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "io/frame_file.h"
+#include "io/particles_file.h"
 #include "io/run_file.h"
 #include "sim_fixtures.h"
 #include "test_support.h"
@@ -66,6 +67,25 @@ TEST(BwSim, SameSceneTwiceGivesBitIdenticalFrames) {
   EXPECT_NE(run.scene_text.find("[[fluid.block]]"), std::string::npos);
   EXPECT_FALSE(run.device.empty());
   EXPECT_FALSE(run.parameters.empty());
+}
+
+// A particles file from a bw-sample that left out the rows behind concave edges
+// (surface rule 1, or no rule at all) still runs, with one line saying to resample it;
+// the current sampler's files say nothing (--quiet above prints nothing).
+TEST(BwSim, WarnsOfASolidSampledBeforeTheConcaveEdgeRule) {
+  test::TempDir dir;
+  write_small_dambreak(dir);
+  SampledSolid tank = read_particles(dir.file("tank.h5"));
+  EXPECT_EQ(tank.surface_rule, kSurfaceRule);
+  tank.surface_rule = 1;
+  write_particles(tank, dir.file("tank.h5"), "bw-sample (test)");
+  EXPECT_EQ(read_particles(dir.file("tank.h5")).surface_rule, 1);
+  const auto r = test::run(bw_sim() + " " + dir.file("scene.toml") + " -o " + dir.file("out") +
+                           " --end-time 0.025 --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(test::line_count(r.err), 1) << r.err;
+  for (const char* word : {"warning", "tank.h5", "concave edges", "sample it again"})
+    EXPECT_NE(r.err.find(word), std::string::npos) << "lacks '" << word << "': " << r.err;
 }
 
 TEST(BwSim, EndTimeOptionAndSummary) {
