@@ -199,6 +199,15 @@ TEST(BwMeasure, GaugeThroughTheTool) {
   const auto bad = bw::test::run(tool + " gauge " + dir.path() + " --at 0.1,0.1 --radius 0.01 --gap -1");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_EQ(bw::test::line_count(bad.err), 1) << bad.err;
+  // Several gauges in one pass, one column each, named or numbered.
+  const auto both = bw::test::run(tool + " gauge " + dir.path() + " --at pool=0.1,0.1 --at 0.5,0.5 --radius 0.01 --bottom 0");
+  ASSERT_EQ(both.exit_code, 0) << both.err;
+  EXPECT_EQ(both.out.rfind("time,pool,G2\n0,0.0949999", 0), 0u) << both.out;
+  EXPECT_NE(both.out.find(",nan"), std::string::npos) << both.out;
+  const auto typo = bw::test::run(tool + " gauge " + dir.path() + " --at H2=0.992 --radius 0.01");
+  EXPECT_EQ(typo.exit_code, 2);
+  EXPECT_NE(typo.err.find("H2=0.992"), std::string::npos) << typo.err;
+  EXPECT_EQ(bw::test::line_count(typo.err), 1) << typo.err;
 }
 
 }  // namespace

@@ -30,7 +30,8 @@ struct Options {
   std::string field = "p";
   double radius = 0;
   // gauge
-  double gap = 0;  // 0: 2 radius
+  std::vector<std::string> gauges;  // NAME=x,y or x,y
+  double gap = 0;                   // 0: 2 radius
   double bottom = -std::numeric_limits<double>::infinity();
   // sensor
   std::vector<std::string> sensors;  // NAME=x,y,z or x,y,z
@@ -59,6 +60,31 @@ bw::analysis::Sensor parse_sensor(const std::string& text, std::size_t index) {
     bw::fail_input("--at '{}': expected NAME=x,y,z or x,y,z (m)", text);
   s.point = {v[0], v[1], v[2]};
   return s;
+}
+
+// "NAME=x,y" or "x,y": a gauge's line. One unnamed gauge is the column "elevation";
+// among several, unnamed ones are G1, G2, ... by position.
+struct GaugeLine {
+  std::string name;
+  double x = 0, y = 0;
+};
+std::vector<GaugeLine> parse_gauges(const std::vector<std::string>& texts) {
+  std::vector<GaugeLine> lines;
+  for (std::size_t k = 0; k < texts.size(); ++k) {
+    const std::string& text = texts[k];
+    GaugeLine g;
+    g.name = texts.size() == 1 ? "elevation" : "G" + std::to_string(k + 1);
+    std::string coords = text;
+    if (const auto eq = text.find('='); eq != std::string::npos) {
+      g.name = text.substr(0, eq);
+      coords = text.substr(eq + 1);
+    }
+    char tail = 0;
+    if (g.name.empty() || std::sscanf(coords.c_str(), "%lf,%lf%c", &g.x, &g.y, &tail) != 2)
+      bw::fail_input("--at '{}': expected NAME=x,y or x,y (m)", text);
+    lines.push_back(g);
+  }
+  return lines;
 }
 
 void print_rows(const Options& o, const std::vector<std::string>& columns, const std::vector<std::vector<double>>& rows,
@@ -116,17 +142,32 @@ int run_dambreak(const Options& o) {
   return bw::kExitOk;
 }
 
-int run_probe(const Options& o, bool gauge) {
+int run_probe(const Options& o) {
   std::vector<std::vector<double>> rows;
   const bw::analysis::Field field = bw::analysis::parse_field(o.field);
   for (const std::string& path : list_frames(o.frames)) {
     const bw::FrameData frame = bw::read_frame(path);
-    const double gap = o.gap > 0 ? o.gap : 2 * o.radius;
-    const double value = gauge ? bw::analysis::surface_elevation(frame, o.point[0], o.point[1], o.radius, gap, o.bottom)
-                               : bw::analysis::probe(frame, field, {o.point[0], o.point[1], o.point[2]}, o.radius);
-    rows.push_back({frame.time, value});
+    rows.push_back({frame.time, bw::analysis::probe(frame, field, {o.point[0], o.point[1], o.point[2]}, o.radius)});
   }
-  print_rows(o, {"time", gauge ? "elevation" : bw::analysis::field_name(field)}, rows, nullptr);
+  print_rows(o, {"time", bw::analysis::field_name(field)}, rows, nullptr);
+  return bw::kExitOk;
+}
+
+// Every gauge of one pass over the frames: a frame is read once.
+int run_gauge(const Options& o) {
+  const std::vector<GaugeLine> lines = parse_gauges(o.gauges);
+  const double gap = o.gap > 0 ? o.gap : 2 * o.radius;
+  std::vector<std::string> columns{"time"};
+  for (const GaugeLine& g : lines) columns.push_back(g.name);
+  std::vector<std::vector<double>> rows;
+  for (const std::string& path : list_frames(o.frames)) {
+    const bw::FrameData frame = bw::read_frame(path);
+    std::vector<double> row{frame.time};
+    for (const GaugeLine& g : lines)
+      row.push_back(bw::analysis::surface_elevation(frame, g.x, g.y, o.radius, gap, o.bottom));
+    rows.push_back(std::move(row));
+  }
+  print_rows(o, columns, rows, nullptr);
   return bw::kExitOk;
 }
 
@@ -234,7 +275,7 @@ int main(int argc, char** argv) {
   bw::cli::setup(app,
                  "  bw-measure dambreak out/frames --width 0.1 --band 0.01 --reference examples/data/martin-moyce-1952.csv\n"
                  "  bw-measure probe out/frames --point 0.3,0.05,0.01 --field p --radius 0.02\n"
-                 "  bw-measure gauge out/frames --at 0.5,0.05 --radius 0.01 --json\n"
+                 "  bw-measure gauge out/frames --at H2=0.992,0.5 --at H4=2.638,0.5 --radius 0.02 --bottom 0\n"
                  "  bw-measure sensor out/frames --at P1=0.8245,0.471,0.021 --at P2=0.8245,0.471,0.061 \\\n"
                  "      --normal 1,0,0 --radius 0.01 --h 0.04\n"
                  "  bw-measure loads out/run.h5 --solid box\n"
@@ -302,9 +343,10 @@ int main(int argc, char** argv) {
       ->check(bw::cli::kPositive);
   sensors->add_flag("--json", o.json, "Print JSON instead of CSV");
 
-  CLI::App* gauge = app.add_subcommand("gauge", "Free-surface elevation on a vertical line");
+  CLI::App* gauge = app.add_subcommand(
+      "gauge", "Wave gauges: the free-surface elevation on vertical lines (m, one column per gauge)");
   frames_option(gauge);
-  gauge->add_option("--at", o.point, "x,y of the gauge (m)")->required()->delimiter(',')->expected(2);
+  gauge->add_option("--at", o.gauges, "NAME=x,y (or x,y) of a gauge's vertical line (m); repeat for more")->required();
   gauge->add_option("--radius", o.radius, "Particles within this distance of the line count (m)")
       ->required()
       ->check(bw::cli::kPositive);
@@ -318,10 +360,10 @@ int main(int argc, char** argv) {
 
   return bw::cli::run(app, argc, argv, [&] {
     if (dambreak->parsed()) return run_dambreak(o);
-    if (probe->parsed()) return run_probe(o, false);
+    if (probe->parsed()) return run_probe(o);
     if (sensor->parsed()) return run_sensor(o);
     if (loads->parsed()) return run_loads(o);
     if (sensors->parsed()) return run_sensors(o);
-    return run_probe(o, true);
+    return run_gauge(o);
   });
 }
