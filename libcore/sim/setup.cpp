@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <numbers>
 #include <unordered_map>
@@ -11,6 +12,7 @@
 
 #include "common/error.h"
 #include "io/particles_file.h"
+#include "sample/sampler.h"
 #include "mesh/triangle_box.h"
 #include "rigid/contact.h"
 
@@ -240,6 +242,29 @@ void check_overlaps(const scene::Scene& s, const Setup& out, const std::vector<B
                      body.name, j, s.solids[j].name, point_text(q));
     }
   }
+}
+
+// A particles file from before bw-sample recorded its surface rule (docs/formats.md,
+// "particles") may lack the rows behind concave edges: its cells are compared with
+// those bw-sample marks now from the same mesh and grid, and a difference is said,
+// not refused (the run goes on as it ran before, with a corner's load on the rows
+// beside it). A file that has them all passes in silence.
+void warn_if_sampled_before_the_rule(const SampledSolid& sampled, const std::string& scene, std::size_t index,
+                                     const std::string& file) {
+  if (sampled.surface_rule >= kSurfaceRule) return;
+  std::vector<CellIndex> stored = sampled.surface;
+  std::vector<CellIndex> now = sample::surface_cells(sampled.mesh, sampled.grid);
+  std::sort(stored.begin(), stored.end());
+  std::sort(now.begin(), now.end());
+  std::vector<CellIndex> missing, extra;
+  std::set_difference(now.begin(), now.end(), stored.begin(), stored.end(), std::back_inserter(missing));
+  std::set_difference(stored.begin(), stored.end(), now.begin(), now.end(), std::back_inserter(extra));
+  if (missing.empty() && extra.empty()) return;
+  fmt::print(stderr,
+             "bw-sim: warning: {}: solid[{}].particles: {} lacks {} of the {} surface cells bw-sample marks now{} "
+             "(an older bw-sample left out the rows behind concave edges, docs/formats.md): sample it again\n",
+             scene, index, file, missing.size(), now.size(),
+             extra.empty() ? std::string() : fmt::format(" and has {} it does not", extra.size()));
 }
 
 }  // namespace
@@ -534,14 +559,7 @@ Setup prepare(const scene::Scene& s, double end_time) {
     } catch (const InputError& e) {
       fail_input("{}: solid[{}].particles: {}", s.path, i, e.what());
     }
-    // Said, not refused: such a run goes on as it ran before, with the corners' load
-    // on the rows beside them, and the warning says how to have it right.
-    if (sampled.surface_rule < kSurfaceRule)
-      fmt::print(stderr,
-                 "bw-sim: warning: {}: solid[{}].particles: {} was sampled without the rows behind its concave edges "
-                 "(surface rule {}, now {}): the fluid in its corners misses the edge's share of the wall; sample it "
-                 "again with bw-sample (docs/formats.md)\n",
-                 s.path, i, solid.particles_given, sampled.surface_rule, kSurfaceRule);
+    warn_if_sampled_before_the_rule(sampled, s.path, i, solid.particles_given);
     const double effective = sampled.grid.spacing * solid.scale;
     if (effective > kMaxSolidSpacingRatio * p.spacing * (1 + kLatticeSlack))
       fail_input("{}: solid[{}].particles: sampled at spacing {} (x scale {} = {}), coarser than {} x the scene's "
