@@ -1,8 +1,8 @@
 #include "sim/setup.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <iterator>
 #include <limits>
 #include <numbers>
@@ -12,9 +12,9 @@
 
 #include "common/error.h"
 #include "io/particles_file.h"
-#include "sample/sampler.h"
 #include "mesh/triangle_box.h"
 #include "rigid/contact.h"
+#include "sample/sampler.h"
 
 namespace bw::sim {
 namespace {

@@ -3,8 +3,8 @@
 // velocity probes, pressure sensors on solids' faces, loads on solids, wave gauges.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <cstdio>
+#include <limits>
 
 #include <fmt/ranges.h>
 
