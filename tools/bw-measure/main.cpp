@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <utility>
 
 #include <fmt/ranges.h>
 
@@ -45,15 +46,18 @@ struct Options {
   double window = 0;
 };
 
+// "NAME=coords" or "coords": the name (`unnamed` without one) and the coordinates.
+std::pair<std::string, std::string> split_named(const std::string& text, std::string unnamed) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos) return {std::move(unnamed), text};
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
 // "NAME=x,y,z" or "x,y,z" (named S1, S2, ... by position).
 bw::analysis::Sensor parse_sensor(const std::string& text, std::size_t index) {
   bw::analysis::Sensor s;
-  std::string coords = text;
-  s.name = "S" + std::to_string(index + 1);
-  if (const auto eq = text.find('='); eq != std::string::npos) {
-    s.name = text.substr(0, eq);
-    coords = text.substr(eq + 1);
-  }
+  const auto [name, coords] = split_named(text, "S" + std::to_string(index + 1));
+  s.name = name;
   double v[3];
   char tail = 0;
   if (s.name.empty() || std::sscanf(coords.c_str(), "%lf,%lf,%lf%c", &v[0], &v[1], &v[2], &tail) != 3)
@@ -71,17 +75,12 @@ struct GaugeLine {
 std::vector<GaugeLine> parse_gauges(const std::vector<std::string>& texts) {
   std::vector<GaugeLine> lines;
   for (std::size_t k = 0; k < texts.size(); ++k) {
-    const std::string& text = texts[k];
     GaugeLine g;
-    g.name = texts.size() == 1 ? "elevation" : "G" + std::to_string(k + 1);
-    std::string coords = text;
-    if (const auto eq = text.find('='); eq != std::string::npos) {
-      g.name = text.substr(0, eq);
-      coords = text.substr(eq + 1);
-    }
+    const auto [name, coords] = split_named(texts[k], texts.size() == 1 ? "elevation" : "G" + std::to_string(k + 1));
+    g.name = name;
     char tail = 0;
     if (g.name.empty() || std::sscanf(coords.c_str(), "%lf,%lf%c", &g.x, &g.y, &tail) != 2)
-      bw::fail_input("--at '{}': expected NAME=x,y or x,y (m)", text);
+      bw::fail_input("--at '{}': expected NAME=x,y or x,y (m)", texts[k]);
     lines.push_back(g);
   }
   return lines;
