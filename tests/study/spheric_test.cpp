@@ -100,5 +100,42 @@ TEST(Spheric, TheReservoirDrainsAndTheFlowReachesTheGaugeAsMeasured) {
   EXPECT_NEAR(body, body_exp, kBodyTolerance) << "50 mm deep at H2";
 }
 
+// spheric-spread.sh: each figure's mean and range over the reports of several runs
+// (Makefile.scenes spheric2-spread); two reports as spheric-report.sh writes them.
+TEST(Spheric, TheSpreadGivesEachFiguresMeanAndRangeOverTheRuns) {
+  test::TempDir dir;
+  const std::string header =
+      "sensor,spacing,rise_s,rise_exp_s,rise_error_ms,peak_kpa,peak_time_s,peak_exp_kpa,peak_error,mean_kpa,"
+      "mean_exp_kpa,mean_error,sd_kpa,noise,noise_exp\n";
+  std::ofstream(dir.file("a.csv")) << header << "P1,0.02,0.41625,0.394,22.3,27.4,0.441,11.2,1.452,6.46,6.76,-0.044,1.98,0.33,0.013\n"
+                                   << "P2,0.02,0.41875,0.410,8.75,16.0,0.451,8.1,0.974,6.21,6.22,-0.002,2.51,0.49,0.012\n";
+  std::ofstream(dir.file("b.csv")) << header << "P1,0.02,0.41875,0.394,24.7,18.9,0.419,11.2,0.691,7.03,6.76,0.040,3.15,0.51,0.013\n"
+                                   << "P2,0.02,0.41875,0.410,8.75,13.6,0.459,8.1,0.677,6.19,6.22,-0.006,2.48,nan,0.012\n";
+  const std::string spread = kSource + "/tests/study/spheric-spread.sh " + dir.file("spread") + " ";
+  const auto r = test::run(spread + dir.file("a.csv") + " " + dir.file("b.csv"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto table = read_csv(dir.file("spread.csv"));
+  ASSERT_EQ(table.at("sensor"), (std::vector<std::string>{"P1", "P2"}));
+  EXPECT_EQ(table.at("runs").at(0), "2");
+  EXPECT_DOUBLE_EQ(std::stod(table.at("rise_error_ms_mean").at(0)), 23.5);
+  EXPECT_DOUBLE_EQ(std::stod(table.at("peak_error_min").at(0)), 0.691);
+  EXPECT_DOUBLE_EQ(std::stod(table.at("peak_error_max").at(0)), 1.452);
+  EXPECT_DOUBLE_EQ(std::stod(table.at("noise_mean").at(0)), 0.42);
+  EXPECT_DOUBLE_EQ(std::stod(table.at("noise_mean").at(1)), 0.49) << "a run without a figure leaves it out";
+  EXPECT_NE(r.out.find("| P1 | 2 | +23.5 (+22.3 to +24.7) | +107% (+69 to +145) |"), std::string::npos) << r.out;
+
+  // One report is no spread; a report without a sensor of the others, or a file that
+  // is no report, is refused.
+  EXPECT_EQ(test::run(spread + dir.file("a.csv")).exit_code, 2);
+  std::ofstream(dir.file("c.csv")) << header << "P1,0.02,0.41625,0.394,22.3,27.4,0.441,11.2,1.452,6.46,6.76,-0.044,1.98,0.33,0.013\n";
+  const auto missing = test::run(spread + dir.file("a.csv") + " " + dir.file("c.csv"));
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("sensor P2 is in 1 of the 2 reports"), std::string::npos) << missing.err;
+  std::ofstream(dir.file("sensors.csv")) << "time,P1\n0.00125,0\n";
+  const auto other = test::run(spread + dir.file("a.csv") + " " + dir.file("sensors.csv"));
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_NE(other.err.find("no column rise_error_ms"), std::string::npos) << other.err;
+}
+
 }  // namespace
 }  // namespace bw

@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# The spread of SPHERIC Test 2's figures over runs that differ only in their last
+# bits (Makefile.scenes `spheric2-spread`, docs/validation.md "Impact pressure"): the
+# same scene with the kernels built at several vector widths, whose sums add in other
+# orders, as another CPU's SIMD width or a GPU's would. An impact is chaotic at the
+# particle scale, so a peak or a sample-to-sample noise that one run prints is one
+# draw; the spread says how far another machine's run may read from it, and a target
+# is met only when the whole range meets it.
+#
+# From each run's report (spheric-report.sh's PREFIX.csv, one row per sensor), per
+# sensor and figure (rise error, peak error, mean error over 0.45-0.55 s, noise) the
+# mean over the runs and their least and largest value. Writes PREFIX.csv (one row
+# per sensor) and PREFIX.md (a Markdown table).
+#
+#   spheric-spread.sh PREFIX report.csv report.csv [...]
+set -euo pipefail
+
+die() { echo "spheric-spread: $*" >&2; exit 2; }
+[[ $# -ge 3 ]] || die "usage: spheric-spread.sh PREFIX report.csv report.csv [...] (two reports or more)"
+prefix=$1
+shift
+for f in "$@"; do [[ -s $f ]] || die "$f: missing or empty (a report of spheric-report.sh)"; done
+
+awk -F, -v OFS=, '
+  FNR == 1 {
+    delete col
+    for (c = 1; c <= NF; ++c) col[$c] = c
+    for (k = 1; k <= 5; ++k)
+      if (!(figure[k] in col) || !("sensor" in col)) { printf "spheric-spread: %s: no column %s (not a spheric-report.sh report)\n", FILENAME, figure[k] > "/dev/stderr"; bad = 1; exit 2 }
+    ++runs
+    next
+  }
+  BEGIN { split("rise_error_ms peak_error mean_error noise noise_exp", figure, " ") }
+  {
+    s = $col["sensor"]
+    if (!(s in seen)) { seen[s] = 1; order[++sensors] = s }
+    ++count[s]
+    for (k = 1; k <= 5; ++k) {
+      v = $col[figure[k]]
+      if (v == "nan" || v == "-nan") continue
+      v += 0
+      sum[s, k] += v; n[s, k]++
+      if (!((s, k) in lo) || v < lo[s, k]) lo[s, k] = v
+      if (!((s, k) in hi) || v > hi[s, k]) hi[s, k] = v
+    }
+  }
+  END {
+    if (bad) exit 2
+    header = "sensor,runs"
+    for (k = 1; k <= 4; ++k) header = header "," figure[k] "_mean," figure[k] "_min," figure[k] "_max"
+    print header ",noise_exp"
+    for (i = 1; i <= sensors; ++i) {
+      s = order[i]
+      if (count[s] != runs) { printf "spheric-spread: sensor %s is in %d of the %d reports\n", s, count[s], runs > "/dev/stderr"; exit 2 }
+      line = s "," runs
+      for (k = 1; k <= 4; ++k)
+        line = line "," (n[s, k] ? sprintf("%.4g,%.4g,%.4g", sum[s, k] / n[s, k], lo[s, k], hi[s, k]) : "nan,nan,nan")
+      print line "," (n[s, 5] ? sprintf("%.4g", sum[s, 5] / n[s, 5]) : "nan")
+    }
+  }' "$@" > "$prefix.csv.tmp"
+mv "$prefix.csv.tmp" "$prefix.csv"
+
+awk -F, '
+  function cell(m, a, b, scale, unit) {
+    if (m == "nan") return "-"
+    return sprintf("%+.*f%s (%+.*f to %+.*f)", digits, scale * m, unit, digits, scale * a, digits, scale * b)
+  }
+  NR == 1 {
+    print "| sensor | runs | rise error (ms) | peak error | mean error 0.45-0.55 s | noise | experiment |"
+    print "|---|---|---|---|---|---|---|"
+    next
+  }
+  {
+    digits = 1; rise = cell($3, $4, $5, 1, "")
+    digits = 0; peak = cell($6, $7, $8, 100, "%"); mean = cell($9, $10, $11, 100, "%")
+    noise = ($12 == "nan") ? "-" : sprintf("%.0f%% (%.0f to %.0f%%)", 100 * $12, 100 * $13, 100 * $14)
+    printf "| %s | %d | %s | %s | %s | %s | %s |\n", $1, $2, rise, peak, mean, noise, ($15 == "nan") ? "-" : sprintf("%.0f%%", 100 * $15)
+  }' "$prefix.csv" > "$prefix.md.tmp"
+mv "$prefix.md.tmp" "$prefix.md"
+cat "$prefix.md"
