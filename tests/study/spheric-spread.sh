@@ -61,7 +61,8 @@ awk -F, -v OFS=, '
 mv "$prefix.csv.tmp" "$prefix.csv"
 
 awk -F, '
-  function cell(m, a, b, scale, unit) {
+  # "mean (least to largest)", each scaled and with its digits
+  function cell(m, a, b, scale, unit, digits) {
     if (m == "nan") return "-"
     return sprintf("%+.*f%s (%+.*f to %+.*f)", digits, scale * m, unit, digits, scale * a, digits, scale * b)
   }
@@ -71,10 +72,9 @@ awk -F, '
     next
   }
   {
-    digits = 1; rise = cell($3, $4, $5, 1, "")
-    digits = 0; peak = cell($6, $7, $8, 100, "%"); mean = cell($9, $10, $11, 100, "%")
     noise = ($12 == "nan") ? "-" : sprintf("%.0f%% (%.0f to %.0f%%)", 100 * $12, 100 * $13, 100 * $14)
-    printf "| %s | %d | %s | %s | %s | %s | %s |\n", $1, $2, rise, peak, mean, noise, ($15 == "nan") ? "-" : sprintf("%.0f%%", 100 * $15)
+    printf "| %s | %d | %s | %s | %s | %s | %s |\n", $1, $2, cell($3, $4, $5, 1, "", 1), cell($6, $7, $8, 100, "%", 0), \
+      cell($9, $10, $11, 100, "%", 0), noise, ($15 == "nan") ? "-" : sprintf("%.0f%%", 100 * $15)
   }' "$prefix.csv" > "$prefix.md.tmp"
 mv "$prefix.md.tmp" "$prefix.md"
 cat "$prefix.md"
