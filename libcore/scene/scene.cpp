@@ -242,6 +242,12 @@ void read_time(Reader& top, Scene& s) {
   in_unit_interval(r, "force_factor", ts.force_factor);
   ts.viscous_factor = r.number("viscous_factor", ts.viscous_factor);
   in_unit_interval(r, "viscous_factor", ts.viscous_factor);
+  ts.diffusion_factor = r.number("diffusion_factor", ts.diffusion_factor);
+  in_unit_interval(r, "diffusion_factor", ts.diffusion_factor);
+  ts.energy_limit = r.number("energy_limit", ts.energy_limit);
+  if (!(ts.energy_limit >= 0 && std::isfinite(ts.energy_limit)))
+    r.fail("energy_limit", fmt::format("{} must be a fraction, 0 or more (0.1: stop 10% above the start; 0: never)",
+                                       ts.energy_limit));
   r.finish();
 }
 

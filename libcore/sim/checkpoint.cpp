@@ -140,6 +140,8 @@ std::string setup_fingerprint(const Setup& setup) {
   // The density scheme and the wall: a run resumed under another one would not go on.
   // (Digested only where they differ from the first release's, whose checkpoints stay valid.)
   if (p.continuity) d.value(1.0), d.value(p.diffusion);
+  if (p.continuity && p.diffusion > 0 && p.diffusion_factor != scene::TimeSettings{}.diffusion_factor)
+    d.value(p.diffusion_factor);
   if (p.wall_hydrostatic) d.value(2.0);
   for (const auto* a : {&setup.fluid, &setup.boundary.particles}) {
     d.vec(a->x), d.vec(a->y), d.vec(a->z), d.vec(a->vx), d.vec(a->vy), d.vec(a->vz);

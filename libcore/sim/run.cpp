@@ -142,19 +142,25 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
   const Parameters& p = s.setup.params;
   const double signal = signal_speed(p, p.rho0);
   const double cfl_limit = p.cfl * p.h / (signal + p.scene_speed);
-  if (p.dt_min > p.contact_dt && p.contact_dt < std::min(cfl_limit, p.dt_viscous))
+  const double fluid_limit = std::min({cfl_limit, p.dt_viscous, p.dt_diffusion});
+  if (p.dt_min > p.contact_dt && p.contact_dt < fluid_limit)
     fail_input("{}: time.dt_min: {} s is above the largest stable step of this scene's contacts, {:.3g} s (bodies "
                "touch with a contact frequency of {:.4g} /s, docs/scene.md); lower time.dt_min",
                scene.path, p.dt_min, p.contact_dt, p.contact_frequency);
-  if (p.dt_min > std::min(cfl_limit, p.dt_viscous)) {
-    if (cfl_limit <= p.dt_viscous)
+  if (p.dt_min > fluid_limit) {
+    if (cfl_limit == fluid_limit)
       fail_input("{}: time.dt_min: {} s is above the largest stable step of this scene, {:.3g} s (the CFL limit "
                  "time.cfl h / (c + its largest speed) = {} x {} / ({:.4g} + {:.4g}), c the signal speed at rest); "
                  "lower time.dt_min",
                  scene.path, p.dt_min, cfl_limit, p.cfl, p.h, signal, p.scene_speed);
-    fail_input("{}: time.dt_min: {} s is above the largest stable step of this scene, {:.3g} s (the viscous limit "
-               "time.viscous_factor h^2 rho0 / max(mu, mu_b)); lower time.dt_min",
-               scene.path, p.dt_min, p.dt_viscous);
+    if (p.dt_viscous == fluid_limit)
+      fail_input("{}: time.dt_min: {} s is above the largest stable step of this scene, {:.3g} s (the viscous limit "
+                 "time.viscous_factor h^2 rho0 / max(mu, mu_b)); lower time.dt_min",
+                 scene.path, p.dt_min, p.dt_viscous);
+    fail_input("{}: time.dt_min: {} s is above the largest stable step of this scene, {:.3g} s (the density "
+               "diffusion's limit time.diffusion_factor h / (fluid.diffusion c0) = {} x {} / ({} x {:.4g})); lower "
+               "time.dt_min or fluid.diffusion",
+               scene.path, p.dt_min, p.dt_diffusion, p.diffusion_factor, p.h, p.diffusion, p.c0);
   }
   s.context = std::make_unique<compute::Context>(device);
   s.solver = std::make_unique<Solver>(s.setup, *s.context);
@@ -361,6 +367,22 @@ RunSummary Simulation::run() {
 
   auto write_frame_now = [&](int f, double dt_lo, double dt_hi) {
     const FluidStats st = solver.stats();
+    // The guard on energy: a scene only loses what it holds, less what its emitters put
+    // in, so a total that rises far above its start is a blow-up in the making (an
+    // unstable step, too much density diffusion), stopped before its frame is written.
+    const double energy = (st.kinetic + st.body_kinetic) + (st.potential + st.body_potential) + st.elastic -
+                          st.emitted + st.outflow;
+    const double limit = scene.time.energy_limit;
+    if (f > 0 && limit > 0) {
+      const double scale = std::max(std::abs(sum.energy_start), st.emitted);
+      if (scale > 0 && energy - sum.energy_start > limit * scale)
+        fail_run("frame {} (t = {:.6f} s): the total energy is {:.1f}% above its start ({:.6g} J against {:.6g} J{}), "
+                 "more than time.energy_limit = {}: the fluid gained energy that no force gave it; it blew up (lower "
+                 "time.cfl, or fluid.diffusion)",
+                 f, solver.time(), 100 * (energy - sum.energy_start) / scale, energy, sum.energy_start,
+                 st.emitted > std::abs(sum.energy_start) ? fmt::format(", of the {:.6g} J emitted", st.emitted) : "",
+                 limit);
+    }
     FrameData data = solver.frame(scene.fields, f);
     data.time = f / p.frame_rate;
     write_frame(data, frame_file_name(frames_dir.string(), f));
@@ -406,9 +428,8 @@ RunSummary Simulation::run() {
     }
     record.fractures = solver.fracture_events();
 
-    // What the scene holds and carried out, beyond what its emitters put in: without
-    // losses, constant.
-    const double energy = row.kinetic_energy + row.potential_energy + st.elastic - st.emitted + st.outflow;
+    // (energy, above: what the scene holds and carried out, beyond what its emitters put
+    // in; without losses, constant.)
     sum.emitted_energy = st.emitted;
     sum.outflow_energy = st.outflow;
     if (f == 0) {

@@ -57,6 +57,8 @@ struct Parameters {
   double frame_rate = 0;
   double dt_min = 0, dt_max = 0, cfl = 0, force_factor = 0;
   double dt_viscous = 0;        // viscous limit (s), infinity without viscosity
+  double dt_diffusion = 0;      // density diffusion's limit (s), infinity without it
+  double diffusion_factor = 0;  // time.diffusion_factor, which sets it
   double scene_speed = 0;       // largest speed the scene can give the fluid (m/s)
   double speed_limit = 0;       // the guard stops the run above this speed (m/s)
   std::int64_t max_particles = 0;  // MFP

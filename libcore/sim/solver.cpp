@@ -326,8 +326,8 @@ StepInfo Solver::step(double t_target) {
                           s.describe_particle(static_cast<std::uint32_t>(fastest)), vmax, p.speed_limit));
   s.settle_count();
 
-  // Adaptive step: CFL (over the fluid and the bodies' particles), force and viscous
-  // limits, the contact limit while bodies touch, at most dt_max, landing on t_target.
+  // Adaptive step: CFL (over the fluid and the bodies' particles), force, viscous and
+  // diffusion limits, the contact limit while bodies touch, at most dt_max, landing on t_target.
   // The CFL limit takes the sound speed of the most compressed particle (signal_speed):
   // a block that hits a wall near c0 doubles its density, where the Tait law's sound
   // speed is 8 times c0, and steps sized for c0 pumped energy into it.
@@ -341,6 +341,10 @@ StepInfo Solver::step(double t_target) {
   if (p.dt_viscous < dt) {
     dt = p.dt_viscous;
     limit = "viscous";
+  }
+  if (p.dt_diffusion < dt) {
+    dt = p.dt_diffusion;
+    limit = "diffusion";
   }
   if (s.rigid && s.rigid->touching_now && p.contact_dt < dt) {
     dt = p.contact_dt;

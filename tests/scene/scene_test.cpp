@@ -66,6 +66,8 @@ TEST(Scene, MinimalSceneHasDocumentedDefaults) {
   EXPECT_DOUBLE_EQ(s.time.cfl, 0.4);
   EXPECT_DOUBLE_EQ(s.time.force_factor, 0.25);
   EXPECT_DOUBLE_EQ(s.time.viscous_factor, 0.125);
+  EXPECT_DOUBLE_EQ(s.time.diffusion_factor, 0.1);
+  EXPECT_DOUBLE_EQ(s.time.energy_limit, 0.1) << "the guard on energy, on by default";
   EXPECT_DOUBLE_EQ(s.fluid.rho0, 998);
   EXPECT_EQ(s.fluid.k, 0);
   EXPECT_EQ(s.fluid.c0, 0);
@@ -98,6 +100,8 @@ dt_max = 1e-3
 cfl = 0.3
 force_factor = 0.2
 viscous_factor = 0.1
+diffusion_factor = 0.05
+energy_limit = 0
 [domain]
 min = [-1, -1, 0]
 max = [1, 1, 2]
@@ -148,6 +152,8 @@ width = 640
   EXPECT_DOUBLE_EQ(s.smoothing_length, 0.025);
   EXPECT_EQ(s.gravity, Vec3d(0, 0, -10));
   EXPECT_DOUBLE_EQ(s.time.cfl, 0.3);
+  EXPECT_DOUBLE_EQ(s.time.diffusion_factor, 0.05);
+  EXPECT_DOUBLE_EQ(s.time.energy_limit, 0);
   EXPECT_DOUBLE_EQ(s.fluid.c0, 40);
   EXPECT_DOUBLE_EQ(s.fluid.mu_b, 0.1);
   EXPECT_DOUBLE_EQ(s.fluid.gamma2, 0.6);
@@ -225,6 +231,9 @@ TEST(SceneErrors, OutOfRangeValues) {
   expect_error(f, "spacing = 0.02\nsmoothing_length = 0.2\n[time]\nend = 1\n", "smoothing_length: 0.2 is 10 spacings");
   expect_error(f, "spacing = 0.02\n[time]\nend = 0\n", "time.end: 0 must be positive");
   expect_error(f, "spacing = 0.02\n[time]\nend = 1\ncfl = 2\n", "time.cfl: 2 is outside (0, 1]");
+  expect_error(f, "spacing = 0.02\n[time]\nend = 1\ndiffusion_factor = 0\n", "time.diffusion_factor: 0 is outside (0, 1]");
+  expect_error(f, "spacing = 0.02\n[time]\nend = 1\nenergy_limit = -0.1\n",
+               "time.energy_limit: -0.1 must be a fraction, 0 or more");
   expect_error(f, "spacing = 0.02\n[time]\nend = 1\ndt_min = 1e-3\ndt_max = 1e-4\n", "time.dt_max: 0.0001 is smaller than dt_min");
   expect_error(f, "spacing = 0.02\n[time]\nend = 1\n[domain]\nmin = [0, 0, 0]\nmax = [1, 0, 1]\n", "domain.max: [1, 0, 1] must exceed min");
   expect_error(f, kMinimal + "[[fluid.block]]\nmin = [0.5, 0.5, 0.5]\nmax = [1.5, 0.6, 0.6]\n", "fluid.block[1]: the block reaches outside the domain");

@@ -155,6 +155,9 @@ TEST(BwSim, BadInputsExitWithTwoAndWriteNothing) {
   expect_bad_input(kGood, "--device: 'fastest'", "--device fastest");
   expect_bad_input(kGood, "--device 99", "--device 99");
   expect_bad_input(kGood, "--end-time", "--end-time -1");
+  // A fixed step between the diffusion's limit (2.3e-4 s at delta 1) and the CFL limit (6e-4 s).
+  expect_bad_input(kGood + "[fluid]\ndiffusion = 1\n", "the density diffusion's limit time.diffusion_factor",
+                   "--set time.dt_min=4e-4 --set time.dt_max=4e-4");
   expect_bad_input(kGood.substr(0, kGood.find("[time]")) + "[time]\nend = 0.001\nframe_rate = 10\n" +
                        kGood.substr(kGood.find("[domain]")),
                    "time.end: 0.001 s is shorter than one frame");
@@ -178,21 +181,40 @@ TEST(BwSim, MissingSceneAndOutput) {
 
 class BwSimBlowUp : public testing::TestWithParam<const char*> {};
 
-TEST_P(BwSimBlowUp, StopsWithOneLineAndKeepsEarlierFrames) {
-  test::TempDir dir;
-  // A wall pushing with 26 times its calibrated weight (gamma2 = gamma1 / 2 = 0.39)
-  // feeds energy into the fluid at every step: it explodes within a few milliseconds
-  // (about 1 ms with the continuity equation, 6 ms with the summation), so frames come
-  // every 1/8000 s for some to be written before it.
+// A wall pushing with 26 times its calibrated weight (gamma2 = gamma1 / 2 = 0.39)
+// feeds energy into the fluid at every step: it explodes within a few milliseconds
+// (about 1 ms with the continuity equation, 6 ms with the summation), so frames come
+// every 1/8000 s for some to be written before it. The particle guard (a non-finite
+// value or a runaway speed) stops it where the energy guard is off; the energy guard
+// stops it sooner, at the first frame whose total is 10% above the start.
+test::CommandResult run_blow_up(const test::TempDir& dir, const std::string& options) {
   write_small_dambreak(dir);
-  const auto r = test::run(bw_sim() + " " + dir.file("scene.toml") + " -o " + dir.file("out") +
-                           " --quiet --set fluid.gamma2=10 --set time.frame_rate=8000 --set fluid.density=" +
-                           GetParam());
+  return test::run(bw_sim() + " " + dir.file("scene.toml") + " -o " + dir.file("out") +
+                   " --quiet --set fluid.gamma2=10 --set time.frame_rate=8000 --set fluid.density=" + options);
+}
+
+TEST_P(BwSimBlowUp, StopsWithOneLineAndKeepsEarlierFrames) {
+  test::TempDir dir, guarded;
+  const auto r = run_blow_up(dir, std::string(GetParam()) + " --set time.energy_limit=0");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_EQ(test::line_count(r.err), 1) << r.err;
   for (const char* word : {"bw-sim: step ", "(t = ", "particle ", "blew up"})
     EXPECT_NE(r.err.find(word), std::string::npos) << "'" << word << "' missing from: " << r.err;
   const RunRecord run = read_run(dir.file("out/run.h5"));
+
+  const auto g = run_blow_up(guarded, GetParam());
+  EXPECT_EQ(g.exit_code, 1) << g.err;
+  EXPECT_EQ(test::line_count(g.err), 1) << g.err;
+  for (const char* word : {"bw-sim: frame ", "the total energy is ", "time.energy_limit = 0.1", "blew up"})
+    EXPECT_NE(g.err.find(word), std::string::npos) << "'" << word << "' missing from: " << g.err;
+  const RunRecord stopped = read_run(guarded.file("out/run.h5"));
+  EXPECT_EQ(g.err, "bw-sim: " + stopped.status + "\n");
+  EXPECT_LT(stopped.frames.size(), run.frames.size()) << "the energy guard stops before the particles run away";
+  const auto energy = [](const FrameStats& s) { return s.kinetic_energy + s.potential_energy + s.elastic_energy; };
+  for (const FrameStats& s : stopped.frames)
+    EXPECT_LE(energy(s) - energy(stopped.frames.front()), 0.1 * energy(stopped.frames.front())) << "frame " << s.frame;
+  test::figure(std::string("frames written before the energy guard stopped it, ") + GetParam(),
+               static_cast<double>(stopped.frames.size()));
   EXPECT_NE(run.status.find("blew up"), std::string::npos) << run.status;
   EXPECT_EQ(r.err, "bw-sim: " + run.status + "\n");
   ASSERT_GE(run.frames.size(), 2u);
