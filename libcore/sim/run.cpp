@@ -367,9 +367,10 @@ RunSummary Simulation::run() {
 
   auto write_frame_now = [&](int f, double dt_lo, double dt_hi) {
     const FluidStats st = solver.stats();
-    // The guard on energy: a scene only loses what it holds, less what its emitters put
-    // in, so a total that rises far above its start is a blow-up in the making (an
-    // unstable step, too much density diffusion), stopped before its frame is written.
+    // What the scene holds and carried out, beyond what its emitters put in: without
+    // losses, constant. The guard on energy: a scene only loses it, so a total that rises
+    // far above its start is a blow-up in the making (an unstable step, too much density
+    // diffusion), stopped before its frame is written.
     const double energy = (st.kinetic + st.body_kinetic) + (st.potential + st.body_potential) + st.elastic -
                           st.emitted + st.outflow;
     const double limit = scene.time.energy_limit;
@@ -428,8 +429,6 @@ RunSummary Simulation::run() {
     }
     record.fractures = solver.fracture_events();
 
-    // (energy, above: what the scene holds and carried out, beyond what its emitters put
-    // in; without losses, constant.)
     sum.emitted_energy = st.emitted;
     sum.outflow_energy = st.outflow;
     if (f == 0) {
