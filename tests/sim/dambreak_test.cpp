@@ -17,28 +17,33 @@ namespace bw {
 namespace {
 
 constexpr double kSpacing = 0.01;
+const Eigen::Vector3i kTank(40, 6, 30);  // tank 4a long, a = 0.1 m
 
-TEST(DamBreak, StaysInTheTankAndLosesEnergy) {
-  test::TempDir dir;
-  const Eigen::Vector3i n(40, 6, 30);  // tank 4a long, a = 0.1 m
-  test::write_tank(dir.file("tank.h5"), n, kSpacing);
-  std::ofstream(dir.file("dambreak.toml")) << R"(
-spacing = 0.01
-[time]
-end = 1.2
-frame_rate = 30
+// The column a = 0.1 m wide and 2a high against the tank's end wall, with the scene's
+// [time] and [fluid] lines; returns the scene's path.
+std::string write_dambreak(const test::TempDir& dir, const std::string& time, const std::string& fluid) {
+  test::write_tank(dir.file("tank.h5"), kTank, kSpacing);
+  std::ofstream(dir.file("dambreak.toml")) << "spacing = 0.01\n[time]\n" << time << R"(
 [domain]
 min = [-0.05, -0.05, -0.05]
 max = [0.46, 0.12, 0.36]
 [fluid]
 mu = 0.02
+)" << fluid << R"(
 [[fluid.block]]
 min = [0.01, 0.01, 0.01]
 max = [0.11, 0.06, 0.21]
 [[solid]]
 particles = "tank.h5"
 )";
-  const sim::RunSummary summary = test::run_scene(dir.file("dambreak.toml"), dir.file("out"));
+  return dir.file("dambreak.toml");
+}
+
+TEST(DamBreak, StaysInTheTankAndLosesEnergy) {
+  test::TempDir dir;
+  const Eigen::Vector3i n = kTank;
+  const sim::RunSummary summary =
+      test::run_scene(write_dambreak(dir, "end = 1.2\nframe_rate = 30", ""), dir.file("out"));
   const RunRecord run = read_run(dir.file("out/run.h5"));
   ASSERT_EQ(run.status, "complete");
   ASSERT_EQ(static_cast<int>(run.frames.size()), 37);
@@ -86,26 +91,7 @@ particles = "tank.h5"
 // The same column with five times the usual density diffusion, to 0.5 s, with extra
 // [time] lines.
 std::string write_diffused_column(const test::TempDir& dir, const std::string& time) {
-  test::write_tank(dir.file("tank.h5"), Eigen::Vector3i(40, 6, 30), kSpacing);
-  std::ofstream(dir.file("diffused.toml")) << R"(
-spacing = 0.01
-[time]
-end = 0.5
-frame_rate = 50
-)" << time << R"(
-[domain]
-min = [-0.05, -0.05, -0.05]
-max = [0.46, 0.12, 0.36]
-[fluid]
-mu = 0.02
-diffusion = 0.5
-[[fluid.block]]
-min = [0.01, 0.01, 0.01]
-max = [0.11, 0.06, 0.21]
-[[solid]]
-particles = "tank.h5"
-)";
-  return dir.file("diffused.toml");
+  return write_dambreak(dir, "end = 0.5\nframe_rate = 50\n" + time, "diffusion = 0.5");
 }
 
 double total_energy(const FrameStats& s) { return s.kinetic_energy + s.potential_energy + s.elastic_energy; }
