@@ -162,7 +162,8 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
                             __global const uint* bstart, __global const float* bx, __global const float* by,
                             __global const float* bz, __global const float* bpsi, __global const float* bvx,
                             __global const float* bvy, __global const float* bvz, __global float* rho,
-                            __global float* pres, __global float* pterm, __global float* vol, __global float* phi) {
+                            __global float* pres, __global float* pterm, __global float* vol, __global float* phi,
+                            __global float* diffusion_rate) {
   const uint i = get_global_id(0);
   if (i >= start[P.ncells]) return;
   const float xi = x[i], yi = y[i], zi = z[i];
@@ -205,6 +206,7 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
     const float min_r2 = h2 * BW_MIN_R2_FRACTION;  // keeps 1/r finite for the particle itself
     const float eta2 = BW_DIFFUSION_ETA2 * h2;
     vfloat sd = 0.0f;  // the fluid's drho/dt over -3 spiky m
+    vfloat sl = 0.0f;  // the diffusion's rate on rho_i itself over 3 spiky m delta'
     vfloat sb = 0.0f;  // the step's change of sum_b Psi_b (h - r)^3
     for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1); ++gz) {
       for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1); ++gy) {
@@ -235,13 +237,18 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
 #if BW_WALL_STEP_ON
           const vfloat phij = VLOAD(phi + j);
           const vfloat sj = 1.0f + BW_WALL_STEP * phij;
-          const vfloat num = ((rti - P.rho0 - hyd) * sj - (rhoj - P.rho0)) * (1.0f + 0.5f * BW_WALL_STEP * (phii + phij)) * r;
+          const vfloat pair = 1.0f + 0.5f * BW_WALL_STEP * (phii + phij);
+          const vfloat num = ((rti - P.rho0 - hyd) * sj - (rhoj - P.rho0)) * pair * r;
           const vfloat den = sj * (r2 + eta2) * rhoj;
+          const vfloat self = pair * r * sj / (1.0f + BW_WALL_STEP * phii);  // d num / d rho_i
 #else
           const vfloat num = (rti - rhoj - hyd) * r;
           const vfloat den = (r2 + eta2) * rhoj;
+          const vfloat self = r;
 #endif
-          sd += select((vfloat)0.0f, q * q * (vij * ir + P.diffusion * num * (1.0f / den)), ok);
+          const vfloat inv = 1.0f / den;
+          sd += select((vfloat)0.0f, q * q * (vij * ir + P.diffusion * num * inv), ok);
+          sl += select((vfloat)0.0f, q * q * self * inv, ok);
 #else
           sd += select((vfloat)0.0f, q * q * (vij * ir), ok);
 #endif
@@ -262,6 +269,9 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
     }
     r = rhoi + P.spiky * (P.gamma1 * VSUM(sb) - 3.0f * P.kernel_mass * VSUM(sd) * dt);
     r = fmax(r, BW_RHO_FLOOR * P.rho0);
+    // The rate at which the diffusion pulls rho_i toward its neighbours' (1/s), the
+    // diagonal of the explicit update: the step's diffusion limit (solver.cpp).
+    diffusion_rate[i] = 3.0f * P.spiky * P.kernel_mass * P.diffusion * VSUM(sl);
   }
   const float p = bw_tait(r, P.rho0, P.stiffness, P.gamma, P.gamma_int);
   rho[i] = r;
@@ -462,13 +472,14 @@ __kernel void fluid_step_reduce(uint n, uint chunk, uint nblocks, uint ncells, f
                                 __global const float* x, __global const float* y, __global const float* z,
                                 __global const float* vx, __global const float* vy, __global const float* vz,
                                 __global const float* ax, __global const float* ay, __global const float* az,
-                                __global const float* rho, __global const uint* hold, __global StepReduce* out) {
+                                __global const float* rho, __global const float* diffusion_rate,
+                                __global const uint* hold, __global StepReduce* out) {
   const uint b = get_global_id(0);
   if (b >= nblocks) return;
   const uint live = start[ncells];
   const uint begin = b * chunk;
   const uint end = min(begin + chunk, n);
-  float max_v2 = 0.0f, max_a2 = 0.0f, max_rho = 0.0f, held_power = 0.0f;
+  float max_v2 = 0.0f, max_a2 = 0.0f, max_rho = 0.0f, max_rate = 0.0f, held_power = 0.0f;
   int fastest = -1, bad = -1;
   for (uint i = begin; i < end; ++i) {
     const float v2 = vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i];
@@ -487,7 +498,10 @@ __kernel void fluid_step_reduce(uint n, uint chunk, uint nblocks, uint ncells, f
       fastest = (int)i;
     }
     max_a2 = fmax(max_a2, a2);
-    if (i < live) max_rho = fmax(max_rho, rho[i]);
+    if (i < live) {
+      max_rho = fmax(max_rho, rho[i]);
+      max_rate = fmax(max_rate, diffusion_rate[i]);
+    }
     // A held particle keeps its velocity whatever the forces on it (fluid_integrate):
     // its emitter supplies -m a, at the power -m a.v.
     if (i < live && hold[i] > 0u) held_power -= mass * (ax[i] * vx[i] + ay[i] * vy[i] + az[i] * vz[i]);
@@ -499,6 +513,7 @@ __kernel void fluid_step_reduce(uint n, uint chunk, uint nblocks, uint ncells, f
   r.bad = bad;
   r.held_power = held_power;
   r.max_rho = max_rho;
+  r.max_diffusion_rate = max_rate;
   out[b] = r;
 }
 

@@ -87,6 +87,7 @@ typedef struct {
   int bad;          // first particle with a non-finite value, -1 when none
   float held_power; // sum of -m a.v over the particles emitters hold: the power they put in (W)
   float max_rho;    // largest density of the live particles (the sound speed of the CFL limit)
+  float max_diffusion_rate;  // largest rate of the density diffusion on a particle's own density (1/s)
 } StepReduce;
 
 // Per-block sums for the frame statistics (host adds the blocks in double).

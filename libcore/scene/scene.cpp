@@ -243,7 +243,10 @@ void read_time(Reader& top, Scene& s) {
   ts.viscous_factor = r.number("viscous_factor", ts.viscous_factor);
   in_unit_interval(r, "viscous_factor", ts.viscous_factor);
   ts.diffusion_factor = r.number("diffusion_factor", ts.diffusion_factor);
-  in_unit_interval(r, "diffusion_factor", ts.diffusion_factor);
+  // Up to 2: the explicit update's eigenvalues lie within twice its diagonal, so 1 is
+  // stable on any packing; above it a close pair's mode can grow (docs/scene.md, "[time]").
+  if (!(ts.diffusion_factor > 0 && ts.diffusion_factor <= 2))
+    r.fail("diffusion_factor", fmt::format("{} is outside (0, 2]", ts.diffusion_factor));
   ts.energy_limit = r.number("energy_limit", ts.energy_limit);
   if (!(ts.energy_limit >= 0 && std::isfinite(ts.energy_limit)))
     r.fail("energy_limit", fmt::format("{} must be a fraction, 0 or more (0.1: stop 10% above the start; 0: never)",

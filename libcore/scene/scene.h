@@ -26,7 +26,7 @@ struct TimeSettings {
   double cfl = 0.4;            // lambda_v: dt <= cfl h / (c + max|v|), c the signal speed (sim/setup.h)
   double force_factor = 0.25;  // lambda_f: dt <= force_factor sqrt(h / max|a|)
   double viscous_factor = 0.125;  // dt <= viscous_factor h^2 rho0 / max(mu, mu_b)
-  double diffusion_factor = 0.1;  // dt <= diffusion_factor h / (delta c0), with density diffusion
+  double diffusion_factor = 1;  // dt <= diffusion_factor / the largest density diffusion rate
   double energy_limit = 0.1;  // the run stops where its total energy rises this fraction above its start; 0: never
 };
 

@@ -293,6 +293,22 @@ double lattice_gradient_moment(double spacing, double h) {
   return moment / (3 * lattice_kernel_sum(spacing, h));
 }
 
+double lattice_diffusion_rate(double spacing, double h, double delta, double c0) {
+  const int reach = static_cast<int>(std::ceil(h / spacing));
+  const double eta2 = 0.01 * h * h;  // fluid.cl's BW_DIFFUSION_ETA2
+  const double spiky_norm = 15.0 / (std::numbers::pi * std::pow(h, 6));
+  double sum = 0;
+  for (int k = -reach; k <= reach; ++k)
+    for (int j = -reach; j <= reach; ++j)
+      for (int i = -reach; i <= reach; ++i) {
+        const double r = spacing * std::sqrt(double(i * i + j * j + k * k));
+        if (r <= 0 || r >= h) continue;
+        sum += (h - r) * (h - r) * r / (r * r + eta2);
+      }
+  // 2 delta h c0 (the diffusion's coefficient) x 3 spiky m / rho0 x the sum, m / rho0 the kernel's volume.
+  return 2 * delta * h * c0 * 3 * spiky_norm * sum / lattice_kernel_sum(spacing, h);
+}
+
 double signal_speed(const Parameters& p, double rho) {
   const double sound = rho > p.rho0 ? p.c0 * std::pow(rho / p.rho0, 0.5 * (p.gamma - 1)) : p.c0;
   // With gamma1 = 0 the walls add nothing to the density: no stiffness of theirs to compare.
@@ -689,13 +705,14 @@ Setup prepare(const scene::Scene& s, double end_time) {
   p.continuity = f.density == scene::DensityScheme::continuity;
   p.diffusion = f.diffusion;
   // The diffusion is integrated explicitly: each particle's density relaxes toward its
-  // neighbours' at a rate of about 16 delta c0 / h (the spiky kernel at h = 2
-  // spacings), and a step longer than about 2 / rate amplifies the particle-scale
-  // mode instead of damping it (the dam break gained 40% of its energy within 0.1 s
-  // at dt delta c0 / h = 0.126, none at 0.112; docs/scene.md, "[time]").
+  // neighbours' at its own rate (about 13 delta c0 / h on the lattice), and a step
+  // longer than about 2 / (the largest eigenvalue, up to twice that rate) amplifies the
+  // particle-scale mode instead of damping it (docs/scene.md, "[time]"). The solver
+  // limits each step by its largest rate; this is the same limit at rest.
   p.diffusion_factor = s.time.diffusion_factor;
-  p.dt_diffusion = p.continuity && p.diffusion > 0 ? p.diffusion_factor * p.h / (p.diffusion * p.c0)
-                                                   : std::numeric_limits<double>::infinity();
+  p.dt_diffusion = p.continuity && p.diffusion > 0
+                       ? p.diffusion_factor / lattice_diffusion_rate(p.spacing, p.h, p.diffusion, p.c0)
+                       : std::numeric_limits<double>::infinity();
   if (p.continuity) out.fluid_rho = hydrostatic_density(s, out, p);
   p.contact_dt = std::numeric_limits<double>::infinity();
   if (!out.bodies.empty()) {

@@ -35,6 +35,13 @@ double calibrated_gamma1(double spacing, double h);
 // gradient there (1 for an exact kernel; 0.774 for W_spiky at h = 2 spacings).
 double lattice_gradient_moment(double spacing, double h);
 
+// The rate (1/s) at which the density diffusion of coefficient delta pulls a
+// particle's density toward its neighbours' on the same lattice, the diagonal of its
+// explicit update (fluid.cl, fluid_density): about 13 delta c0 / h for W_spiky at h =
+// 2 spacings. The diffusion's step limit is set from each step's own largest rate;
+// this one is the limit at rest, which a fixed step must keep.
+double lattice_diffusion_rate(double spacing, double h, double delta, double c0);
+
 struct Parameters {
   double spacing = 0;
   double h = 0;                 // support radius
@@ -57,8 +64,8 @@ struct Parameters {
   double frame_rate = 0;
   double dt_min = 0, dt_max = 0, cfl = 0, force_factor = 0;
   double dt_viscous = 0;        // viscous limit (s), infinity without viscosity
-  double dt_diffusion = 0;      // density diffusion's limit (s), infinity without it
-  double diffusion_factor = 0;  // time.diffusion_factor, which sets it
+  double dt_diffusion = 0;      // density diffusion's limit on the lattice at rest (s), infinity without it
+  double diffusion_factor = 0;  // time.diffusion_factor: dt <= it / the largest diffusion rate
   double scene_speed = 0;       // largest speed the scene can give the fluid (m/s)
   double speed_limit = 0;       // the guard stops the run above this speed (m/s)
   std::int64_t max_particles = 0;  // MFP

@@ -145,6 +145,7 @@ struct Solver::Impl {
   // continuity equation integrates; the reorder carries it into rho_state, its value
   // at the start of the step, from which fluid_density integrates the step).
   Buffer rho, rho_state, pres, pterm, vol, phi, ax, ay, az, start;
+  Buffer diffusion_rate;  // per particle, the density diffusion's rate on its own density (1/s)
   double pending_dt = 0;   // the step taken since the density was last integrated
   double density_dt = 0;   // the step the last density launch integrated
   // boundary
@@ -299,7 +300,7 @@ struct Solver::Impl {
       ctx.launch(wall_fraction, n);
     }
     density.args(Q, static_cast<float>(density_dt), start, x[f], y[f], z[f], vx[f], vy[f], vz[f], rho_state, bstart, bx,
-                 by, bz, bpsi, bvx, bvy, bvz, rho, pres, pterm, vol, phi);
+                 by, bz, bpsi, bvx, bvy, bvz, rho, pres, pterm, vol, phi, diffusion_rate);
     ctx.launch(density, n);
     if (Q.wall_hydrostatic && nb > 0) {  // the walls' pressures, from the fluid's just found
       boundary_pressure.args(Q, nb, start, x[f], y[f], z[f], rho, pres, bx, by, bz, bpt);

@@ -66,7 +66,7 @@ TEST(Scene, MinimalSceneHasDocumentedDefaults) {
   EXPECT_DOUBLE_EQ(s.time.cfl, 0.4);
   EXPECT_DOUBLE_EQ(s.time.force_factor, 0.25);
   EXPECT_DOUBLE_EQ(s.time.viscous_factor, 0.125);
-  EXPECT_DOUBLE_EQ(s.time.diffusion_factor, 0.1);
+  EXPECT_DOUBLE_EQ(s.time.diffusion_factor, 1);
   EXPECT_DOUBLE_EQ(s.time.energy_limit, 0.1) << "the guard on energy, on by default";
   EXPECT_DOUBLE_EQ(s.fluid.rho0, 998);
   EXPECT_EQ(s.fluid.k, 0);
@@ -231,7 +231,7 @@ TEST(SceneErrors, OutOfRangeValues) {
   expect_error(f, "spacing = 0.02\nsmoothing_length = 0.2\n[time]\nend = 1\n", "smoothing_length: 0.2 is 10 spacings");
   expect_error(f, "spacing = 0.02\n[time]\nend = 0\n", "time.end: 0 must be positive");
   expect_error(f, "spacing = 0.02\n[time]\nend = 1\ncfl = 2\n", "time.cfl: 2 is outside (0, 1]");
-  expect_error(f, "spacing = 0.02\n[time]\nend = 1\ndiffusion_factor = 0\n", "time.diffusion_factor: 0 is outside (0, 1]");
+  expect_error(f, "spacing = 0.02\n[time]\nend = 1\ndiffusion_factor = 0\n", "time.diffusion_factor: 0 is outside (0, 2]");
   expect_error(f, "spacing = 0.02\n[time]\nend = 1\nenergy_limit = -0.1\n",
                "time.energy_limit: -0.1 must be a fraction, 0 or more");
   expect_error(f, "spacing = 0.02\n[time]\nend = 1\ndt_min = 1e-3\ndt_max = 1e-4\n", "time.dt_max: 0.0001 is smaller than dt_min");

@@ -156,7 +156,7 @@ TEST(BwSim, BadInputsExitWithTwoAndWriteNothing) {
   expect_bad_input(kGood, "--device 99", "--device 99");
   expect_bad_input(kGood, "--end-time", "--end-time -1");
   // A fixed step between the diffusion's limit (2.3e-4 s at delta 1) and the CFL limit (6e-4 s).
-  expect_bad_input(kGood + "[fluid]\ndiffusion = 1\n", "the density diffusion's limit time.diffusion_factor",
+  expect_bad_input(kGood + "[fluid]\ndiffusion = 1\n", "the density diffusion's limit at rest, time.diffusion_factor",
                    "--set time.dt_min=4e-4 --set time.dt_max=4e-4");
   expect_bad_input(kGood.substr(0, kGood.find("[time]")) + "[time]\nend = 0.001\nframe_rate = 10\n" +
                        kGood.substr(kGood.find("[domain]")),
