@@ -278,33 +278,39 @@ double lattice_kernel_sum(double spacing, double h) {
   return sum;
 }
 
-double lattice_gradient_moment(double spacing, double h) {
-  const int reach = static_cast<int>(std::ceil(h / spacing));
-  const double spiky_grad = 45.0 / (std::numbers::pi * std::pow(h, 6));  // -dW/dr = spiky_grad (h - r)^2
-  double moment = 0;
-  for (int k = -reach; k <= reach; ++k)
-    for (int j = -reach; j <= reach; ++j)
-      for (int i = -reach; i <= reach; ++i) {
-        const double r = spacing * std::sqrt(double(i * i + j * j + k * k));
-        if (r <= 0 || r >= h) continue;
-        // x_ij (x) grad W: its trace is r dW/dr.
-        moment += r * spiky_grad * (h - r) * (h - r);
-      }
-  return moment / (3 * lattice_kernel_sum(spacing, h));
-}
+namespace {
 
-double lattice_diffusion_rate(double spacing, double h, double delta, double c0) {
+// Sum of f(r) over the simple cubic lattice's points at distances 0 < r < h from a
+// lattice point.
+template <typename F>
+double sum_over_lattice_neighbours(double spacing, double h, F f) {
   const int reach = static_cast<int>(std::ceil(h / spacing));
-  const double eta2 = 0.01 * h * h;  // fluid.cl's BW_DIFFUSION_ETA2
-  const double spiky_norm = 15.0 / (std::numbers::pi * std::pow(h, 6));
   double sum = 0;
   for (int k = -reach; k <= reach; ++k)
     for (int j = -reach; j <= reach; ++j)
       for (int i = -reach; i <= reach; ++i) {
         const double r = spacing * std::sqrt(double(i * i + j * j + k * k));
         if (r <= 0 || r >= h) continue;
-        sum += (h - r) * (h - r) * r / (r * r + eta2);
+        sum += f(r);
       }
+  return sum;
+}
+
+}  // namespace
+
+double lattice_gradient_moment(double spacing, double h) {
+  const double spiky_grad = 45.0 / (std::numbers::pi * std::pow(h, 6));  // -dW/dr = spiky_grad (h - r)^2
+  // x_ij (x) grad W: its trace is r dW/dr.
+  const double moment =
+      sum_over_lattice_neighbours(spacing, h, [&](double r) { return r * spiky_grad * (h - r) * (h - r); });
+  return moment / (3 * lattice_kernel_sum(spacing, h));
+}
+
+double lattice_diffusion_rate(double spacing, double h, double delta, double c0) {
+  const double eta2 = 0.01 * h * h;  // fluid.cl's BW_DIFFUSION_ETA2
+  const double spiky_norm = 15.0 / (std::numbers::pi * std::pow(h, 6));
+  const double sum =
+      sum_over_lattice_neighbours(spacing, h, [&](double r) { return (h - r) * (h - r) * r / (r * r + eta2); });
   // 2 delta h c0 (the diffusion's coefficient) x 3 spiky m / rho0 x the sum, m / rho0 the kernel's volume.
   return 2 * delta * h * c0 * 3 * spiky_norm * sum / lattice_kernel_sum(spacing, h);
 }
