@@ -156,14 +156,14 @@ __kernel void fluid_wall_step(SimParams P, __global const uint* start, __global 
 // it a jet's spray thinned to 0.1 rho0 and its diffusion and viscosity weights, m / rho,
 // blew the jet on the baffle up.
 #define BW_RHO_FLOOR 0.9f
-__kernel void fluid_density(SimParams P, float dt, __global const uint* start, __global const float* x,
+inline void bw_fluid_density(SimParams P, float dt, __global const uint* start, __global const float* x,
                             __global const float* y, __global const float* z, __global const float* vx,
                             __global const float* vy, __global const float* vz, __global const float* rho_state,
                             __global const uint* bstart, __global const float* bx, __global const float* by,
                             __global const float* bz, __global const float* bpsi, __global const float* bvx,
                             __global const float* bvy, __global const float* bvz, __global float* rho,
                             __global float* pres, __global float* pterm, __global float* vol, __global float* phi,
-                            __global float* diffusion_rate) {
+                            __global float* diffusion_rate, const uint want_rate) {
   const uint i = get_global_id(0);
   if (i >= start[P.ncells]) return;
   const float xi = x[i], yi = y[i], zi = z[i];
@@ -248,7 +248,7 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
 #endif
           const vfloat inv = 1.0f / den;
           sd += select((vfloat)0.0f, q * q * (vij * ir + P.diffusion * num * inv), ok);
-          sl += select((vfloat)0.0f, q * q * self * inv, ok);
+          if (want_rate) sl += select((vfloat)0.0f, q * q * self * inv, ok);
 #else
           sd += select((vfloat)0.0f, q * q * (vij * ir), ok);
 #endif
@@ -270,8 +270,9 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
     r = rhoi + P.spiky * (P.gamma1 * VSUM(sb) - 3.0f * P.kernel_mass * VSUM(sd) * dt);
     r = fmax(r, BW_RHO_FLOOR * P.rho0);
     // The rate at which the diffusion pulls rho_i toward its neighbours' (1/s), the
-    // diagonal of the explicit update: the step's diffusion limit (solver.cpp).
-    diffusion_rate[i] = 3.0f * P.spiky * P.kernel_mass * P.diffusion * VSUM(sl);
+    // diagonal of the explicit update: the step's diffusion limit (solver.cpp), on the
+    // steps the solver asks for it (want_rate; the term is the same either way).
+    if (want_rate) diffusion_rate[i] = 3.0f * P.spiky * P.kernel_mass * P.diffusion * VSUM(sl);
   }
   const float p = bw_tait(r, P.rho0, P.stiffness, P.gamma, P.gamma_int);
   rho[i] = r;
@@ -285,6 +286,33 @@ __kernel void fluid_density(SimParams P, float dt, __global const uint* start, _
 #else
   phi[i] = P.spiky * VSUM(wb) / P.rho0;
 #endif
+}
+
+// The density pass as two kernels, with and without the diffusion's rate, so that the
+// steps that skip the rate (solver_impl.h, ensure_grid) do not pay for it; the
+// term's arithmetic is the same in both.
+__kernel void fluid_density(SimParams P, float dt, __global const uint* start, __global const float* x,
+                            __global const float* y, __global const float* z, __global const float* vx,
+                            __global const float* vy, __global const float* vz, __global const float* rho_state,
+                            __global const uint* bstart, __global const float* bx, __global const float* by,
+                            __global const float* bz, __global const float* bpsi, __global const float* bvx,
+                            __global const float* bvy, __global const float* bvz, __global float* rho,
+                            __global float* pres, __global float* pterm, __global float* vol, __global float* phi,
+                            __global float* diffusion_rate) {
+  bw_fluid_density(P, dt, start, x, y, z, vx, vy, vz, rho_state, bstart, bx, by, bz, bpsi, bvx, bvy, bvz, rho, pres, pterm, vol,
+                   phi, diffusion_rate, 0u);
+}
+
+__kernel void fluid_density_rate(SimParams P, float dt, __global const uint* start, __global const float* x,
+                            __global const float* y, __global const float* z, __global const float* vx,
+                            __global const float* vy, __global const float* vz, __global const float* rho_state,
+                            __global const uint* bstart, __global const float* bx, __global const float* by,
+                            __global const float* bz, __global const float* bpsi, __global const float* bvx,
+                            __global const float* bvy, __global const float* bvz, __global float* rho,
+                            __global float* pres, __global float* pterm, __global float* vol, __global float* phi,
+                            __global float* diffusion_rate) {
+  bw_fluid_density(P, dt, start, x, y, z, vx, vy, vz, rho_state, bstart, bx, by, bz, bpsi, bvx, bvy, bvz, rho, pres, pterm, vol,
+                   phi, diffusion_rate, 1u);
 }
 
 // The pressure a hydrostatic wall's boundary particle b holds (P.wall_hydrostatic),

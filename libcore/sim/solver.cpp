@@ -108,6 +108,7 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   s.neighbour_lists = s.grid_program.kernel("neighbour_lists");
   s.psi = s.fluid_program.kernel("boundary_psi");
   s.density = s.fluid_program.kernel("fluid_density");
+  s.density_rate = s.fluid_program.kernel("fluid_density_rate");
   s.wall_fraction = s.fluid_program.kernel("fluid_wall_fraction");
   s.boundary_pressure = s.fluid_program.kernel("boundary_pressure");
   s.wall_step = s.fluid_program.kernel("fluid_wall_step");
@@ -348,10 +349,29 @@ StepInfo Solver::step(double t_target) {
   // it pulls a particle's density toward its neighbours') cannot amplify any mode
   // (Gershgorin: the update's eigenvalues lie within twice the diagonal). Where
   // particles crowd together in an impact the rate rises above the lattice's, and a
-  // bound fixed at the lattice's rate let such impacts gain energy.
-  if (p.continuity && p.diffusion > 0 && max_rate > 0 && p.diffusion_factor / max_rate < dt) {
-    dt = p.diffusion_factor / max_rate;
-    limit = "diffusion";
+  // bound fixed at the lattice's rate let such impacts gain energy. The density pass
+  // skips the rate where the limit cannot bind (ensure_grid); where this step's other
+  // limits come within the margin of the last rate after all, it runs again with the
+  // rate (the same densities), so every dt is what the rate of every step would give.
+  const bool diffusion = p.continuity && p.diffusion > 0;
+  s.limit_last = std::min(dt, p.dt_max);
+  if (diffusion && !s.rate_wanted && s.limit_last * s.rate_last * Impl::kRateGrowth >= p.diffusion_factor) {
+    s.rate_wanted = true;
+    s.launch_density(s.P);
+    s.ctx.launch(s.step_reduce, blocks);
+    max_rate = 0;
+    for (const StepReduce& r : s.ctx.read_vector<StepReduce>(s.step_out, blocks))
+      max_rate = std::max(max_rate, double(r.max_diffusion_rate));
+  }
+  if (s.rate_wanted) {
+    s.rate_last = max_rate;
+    s.rate_age = 0;
+    if (diffusion && max_rate > 0 && p.diffusion_factor / max_rate < dt) {
+      dt = p.diffusion_factor / max_rate;
+      limit = "diffusion";
+    }
+  } else {
+    ++s.rate_age;
   }
   if (s.rigid && s.rigid->touching_now && p.contact_dt < dt) {
     dt = p.contact_dt;
