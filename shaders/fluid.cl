@@ -156,14 +156,19 @@ __kernel void fluid_wall_step(SimParams P, __global const uint* start, __global 
 // it a jet's spray thinned to 0.1 rho0 and its diffusion and viscosity weights, m / rho,
 // blew the jet on the baffle up.
 #define BW_RHO_FLOOR 0.9f
-inline void bw_fluid_density(SimParams P, float dt, __global const uint* start, __global const float* x,
-                            __global const float* y, __global const float* z, __global const float* vx,
-                            __global const float* vy, __global const float* vz, __global const float* rho_state,
-                            __global const uint* bstart, __global const float* bx, __global const float* by,
-                            __global const float* bz, __global const float* bpsi, __global const float* bvx,
-                            __global const float* bvy, __global const float* bvz, __global float* rho,
-                            __global float* pres, __global float* pterm, __global float* vol, __global float* phi,
-                            __global float* diffusion_rate, const uint want_rate) {
+// The density pass's parameters, for its body and its two kernels (below).
+#define BW_DENSITY_PARAMS                                                                                 \
+  SimParams P, float dt, __global const uint* start, __global const float* x, __global const float* y,  \
+      __global const float* z, __global const float* vx, __global const float* vy,                      \
+      __global const float* vz, __global const float* rho_state, __global const uint* bstart,           \
+      __global const float* bx, __global const float* by, __global const float* bz,                    \
+      __global const float* bpsi, __global const float* bvx, __global const float* bvy,                 \
+      __global const float* bvz, __global float* rho, __global float* pres, __global float* pterm,      \
+      __global float* vol, __global float* phi, __global float* diffusion_rate
+#define BW_DENSITY_ARGS \
+  P, dt, start, x, y, z, vx, vy, vz, rho_state, bstart, bx, by, bz, bpsi, bvx, bvy, bvz, rho, pres, pterm, vol, phi, \
+      diffusion_rate
+inline void bw_fluid_density(BW_DENSITY_PARAMS, const uint want_rate) {
   const uint i = get_global_id(0);
   if (i >= start[P.ncells]) return;
   const float xi = x[i], yi = y[i], zi = z[i];
@@ -291,28 +296,12 @@ inline void bw_fluid_density(SimParams P, float dt, __global const uint* start, 
 // The density pass as two kernels, with and without the diffusion's rate, so that the
 // steps that skip the rate (solver_impl.h, ensure_grid) do not pay for it; the
 // term's arithmetic is the same in both.
-__kernel void fluid_density(SimParams P, float dt, __global const uint* start, __global const float* x,
-                            __global const float* y, __global const float* z, __global const float* vx,
-                            __global const float* vy, __global const float* vz, __global const float* rho_state,
-                            __global const uint* bstart, __global const float* bx, __global const float* by,
-                            __global const float* bz, __global const float* bpsi, __global const float* bvx,
-                            __global const float* bvy, __global const float* bvz, __global float* rho,
-                            __global float* pres, __global float* pterm, __global float* vol, __global float* phi,
-                            __global float* diffusion_rate) {
-  bw_fluid_density(P, dt, start, x, y, z, vx, vy, vz, rho_state, bstart, bx, by, bz, bpsi, bvx, bvy, bvz, rho, pres, pterm, vol,
-                   phi, diffusion_rate, 0u);
+__kernel void fluid_density(BW_DENSITY_PARAMS) {
+  bw_fluid_density(BW_DENSITY_ARGS, 0u);
 }
 
-__kernel void fluid_density_rate(SimParams P, float dt, __global const uint* start, __global const float* x,
-                            __global const float* y, __global const float* z, __global const float* vx,
-                            __global const float* vy, __global const float* vz, __global const float* rho_state,
-                            __global const uint* bstart, __global const float* bx, __global const float* by,
-                            __global const float* bz, __global const float* bpsi, __global const float* bvx,
-                            __global const float* bvy, __global const float* bvz, __global float* rho,
-                            __global float* pres, __global float* pterm, __global float* vol, __global float* phi,
-                            __global float* diffusion_rate) {
-  bw_fluid_density(P, dt, start, x, y, z, vx, vy, vz, rho_state, bstart, bx, by, bz, bpsi, bvx, bvy, bvz, rho, pres, pterm, vol,
-                   phi, diffusion_rate, 1u);
+__kernel void fluid_density_rate(BW_DENSITY_PARAMS) {
+  bw_fluid_density(BW_DENSITY_ARGS, 1u);
 }
 
 // The pressure a hydrostatic wall's boundary particle b holds (P.wall_hydrostatic),
