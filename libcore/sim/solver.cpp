@@ -355,7 +355,7 @@ StepInfo Solver::step(double t_target) {
   // rate (the same densities), so every dt is what the rate of every step would give.
   const bool diffusion = p.continuity && p.diffusion > 0;
   s.limit_last = std::min(dt, p.dt_max);
-  if (diffusion && !s.rate_wanted && s.limit_last * s.rate_last * Impl::kRateGrowth >= p.diffusion_factor) {
+  if (diffusion && !s.rate_wanted && s.rate_may_bind()) {
     s.rate_wanted = true;
     s.launch_density(s.P);
     s.ctx.launch(s.step_reduce, blocks);

@@ -153,6 +153,8 @@ struct Solver::Impl {
   double rate_last = 0;     // the largest rate when it was last computed (1/s)
   int rate_age = 0;         // steps since then
   double limit_last = 0;    // the last step's dt from the other limits and dt_max (s)
+  // Whether the diffusion's limit could bind at limit_last: the rate is needed.
+  bool rate_may_bind() const { return limit_last * rate_last * kRateGrowth >= params.diffusion_factor; }
   double pending_dt = 0;   // the step taken since the density was last integrated
   double density_dt = 0;   // the step the last density launch integrated
   // boundary
@@ -297,11 +299,10 @@ struct Solver::Impl {
     // bind: every step while the last step's other limits times the last rate come
     // within kRateGrowth of diffusion_factor, at least every kRateEvery steps otherwise
     // (the largest rate grows by less than 2% in four steps, measured in a stiff
-    // fluid's impact: docs/scene.md, "[time]"). Where it is skipped the limit cannot
+    // fluid's impact: docs/performance.md). Where it is skipped the limit cannot
     // bind, so every step's dt is what the rate of every step would give.
     rate_wanted = params.continuity && params.diffusion > 0 &&
-                  !(rate_last > 0 && rate_age < kRateEvery &&
-                    limit_last * rate_last * kRateGrowth < params.diffusion_factor);
+                  !(rate_last > 0 && rate_age < kRateEvery && !rate_may_bind());
     launch_density(P);
     grid_valid = true;
   }
