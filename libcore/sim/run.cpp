@@ -157,11 +157,11 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
       fail_input("{}: time.dt_min: {} s is above the largest stable step of this scene, {:.3g} s (the viscous limit "
                  "time.viscous_factor h^2 rho0 / max(mu, mu_b)); lower time.dt_min",
                  scene.path, p.dt_min, p.dt_viscous);
+    const double rate = p.diffusion_factor / p.dt_diffusion;  // the lattice's, setup's lattice_diffusion_rate
     fail_input("{}: time.dt_min: {} s is above the largest stable step of this scene, {:.3g} s (the density "
                "diffusion's limit at rest, time.diffusion_factor / its rate = {} / {:.4g} /s, the rate {:.4g} "
                "fluid.diffusion c0 / h); lower time.dt_min or fluid.diffusion",
-               scene.path, p.dt_min, p.dt_diffusion, p.diffusion_factor, p.diffusion_factor / p.dt_diffusion,
-               p.diffusion_factor / p.dt_diffusion * p.h / (p.diffusion * p.c0));
+               scene.path, p.dt_min, p.dt_diffusion, p.diffusion_factor, rate, rate * p.h / (p.diffusion * p.c0));
   }
   s.context = std::make_unique<compute::Context>(device);
   s.solver = std::make_unique<Solver>(s.setup, *s.context);
