@@ -138,49 +138,12 @@ verdict() {  # verdict VALUE TARGET above|below: met / missed, only on the GPU
 }
 
 # ---- the driver: OpenCL through an ICD file of our own, EGL through glvnd's vendor file
-find_lib() {  # the path of a shared library: the loader's cache, then the usual folders
-  local so=$1 path d
-  path=$(ldconfig -p 2>/dev/null | awk -v so="$so" '$1 == so && /x86-64/ { print $NF; exit }')
-  [[ -n $path ]] && { echo "$path"; return; }
-  for d in /usr/lib/x86_64-linux-gnu /usr/local/nvidia/lib64 /usr/local/nvidia/lib /usr/lib64 /usr/lib \
-           /usr/local/cuda/compat /usr/lib/x86_64-linux-gnu/nvidia/current; do
-    [[ -e $d/$so ]] && { echo "$d/$so"; return; }
-  done
-  return 1
-}
-# A driver folder the loader's cache does not know goes on the search path, for the
-# libraries the driver's own libraries load by name.
-search_driver_folder() {
-  local dir; dir=$(dirname "$1")
-  ldconfig -p 2>/dev/null | grep -q " => $dir/" && return 0
-  [[ :${LD_LIBRARY_PATH:-}: == *:$dir:* ]] || export LD_LIBRARY_PATH=$dir${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
-}
+# shellcheck source=tools/gpu-driver.sh
+source "$(dirname "$0")/gpu-driver.sh"
 say "$(date -u +%Y-%m-%dT%H:%M:%SZ) on ${HOSTNAME:-?}, device $device, $( ((quick)) && echo quick || echo full) mode, budget $budget s"
 if [[ $device == gpu ]]; then
-  if cl=$(find_lib libnvidia-opencl.so.1); then
-    mkdir -p "$work/icd"
-    echo "$cl" > "$work/icd/nvidia.icd"
-    export OCL_ICD_VENDORS=$work/icd
-    search_driver_folder "$cl"
-    say "OpenCL: $cl through $work/icd/nvidia.icd"
-  else
-    say "OpenCL: no libnvidia-opencl.so.1 found; the ICD loader's own files (/etc/OpenCL/vendors) decide"
-  fi
-  if [[ -z ${__EGL_VENDOR_LIBRARY_FILENAMES:-} ]]; then
-    for f in /usr/share/glvnd/egl_vendor.d/10_nvidia.json /etc/glvnd/egl_vendor.d/10_nvidia.json \
-             /usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json /usr/local/share/glvnd/egl_vendor.d/10_nvidia.json; do
-      [[ -e $f ]] && { export __EGL_VENDOR_LIBRARY_FILENAMES=$f; break; }
-    done
-  fi
-  if egl=$(find_lib libEGL_nvidia.so.0); then
-    search_driver_folder "$egl"
-    if [[ -z ${__EGL_VENDOR_LIBRARY_FILENAMES:-} ]]; then
-      # No vendor file installed: one of our own naming the driver's EGL library.
-      printf '{"file_format_version": "1.0.0", "ICD": {"library_path": "%s"}}\n' "$egl" > "$work/10_nvidia.json"
-      export __EGL_VENDOR_LIBRARY_FILENAMES=$work/10_nvidia.json
-    fi
-  fi
-  say "EGL vendor file: ${__EGL_VENDOR_LIBRARY_FILENAMES:-the default folders of glvnd}; LD_LIBRARY_PATH=${LD_LIBRARY_PATH:-}"
+  gpu_driver_setup "$work" > "$work/driver.txt"  # not in a subshell: it exports
+  while IFS= read -r line; do say "$line"; done < "$work/driver.txt"
 fi
 gpu_name=""
 if [[ $device == gpu ]] && command -v nvidia-smi >/dev/null; then
@@ -191,14 +154,11 @@ fi
 
 # ---- bundle: the tools start (every library they need is there)
 # The system's C++ runtime first; the bundle's where that one is missing or too old.
-if ! "$B/bw-info" --version >> "$log" 2>&1; then
-  export LD_LIBRARY_PATH=$bundle/lib/fallback${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
-  if ! "$B/bw-info" --version >> "$log" 2>&1; then
-    ldd "$B/bw-info" >> "$log" 2>&1 || true
-    die "$B/bw-info does not start on this machine (ldd in $log)"
-  fi
-  say "the system's C++ runtime is missing or older than the build's: the bundle's is used ($bundle/lib/fallback)"
+if ! gpu_cxx_runtime "$bundle" > "$work/runtime.txt"; then
+  ldd "$B/bw-info" >> "$log" 2>&1 || true
+  die "$B/bw-info does not start on this machine (ldd in $log)"
 fi
+say "$(cat "$work/runtime.txt")"
 
 # ---- devices
 if run_step devices-opencl 60 "$B/bw-sim" --device list; then
