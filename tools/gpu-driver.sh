@@ -1,6 +1,6 @@
 # shellcheck shell=bash
 # The GPU driver for the bundled tools (tools/gpu-bundle.sh), sourced by
-# tools/gpu-check.sh. On a machine with only a GPU driver
+# tools/gpu-check.sh and tools/gpu-spheric.sh. On a machine with only a GPU driver
 # installed, OpenCL goes through an ICD file of our own that names the driver's
 # libnvidia-opencl.so.1 (the bundle's ICD loader reads OCL_ICD_VENDORS), and glvnd's
 # EGL through the driver's vendor file (or one of our own naming libEGL_nvidia.so.0);
