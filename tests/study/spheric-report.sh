@@ -14,6 +14,10 @@
 #            over the mean: the acoustic noise (a steady load gives 0); the
 #            experiment's the same, from its record averaged over the run's sample
 #            interval
+#   load     the peak of the pressure's moving mean over SPHERIC_LOAD_WINDOW (0.02 s),
+#            the run's and the experiment's record's alike: the load a structure
+#            slower than the window feels, where a single sample's peak is the front's
+#            first particles striking at once
 # Writes PREFIX.csv (one row per sensor), PREFIX.md (a Markdown table) and PREFIX.png
 # (the four histories against the experiment's).
 #
@@ -36,7 +40,10 @@ done
 histories=${SPHERIC_HISTORIES:-$(dirname "$reference")/spheric-test2-histories.csv}
 [[ -s $histories ]] || die "$histories: missing or empty (the experiment's histories; set SPHERIC_HISTORIES)"
 
-awk -v OFS=, -v spacing="$spacing" '
+window=${SPHERIC_LOAD_WINDOW:-0.02}
+[[ $window =~ ^[0-9]*\.?[0-9]+$ ]] && awk -v w="$window" 'BEGIN { exit !(w > 0) }' ||
+  die "SPHERIC_LOAD_WINDOW: '$window' is not a positive number of seconds"
+awk -v OFS=, -v spacing="$spacing" -v window="$window" '
   FILENAME == ARGV[1] {
     if ($0 ~ /^P[0-9]/) { rise[$1] = $2; peak[$1] = $3 * 1000; peak_time[$1] = $4; sub(/^~/, "", peak_time[$1]) }
     next
@@ -57,8 +64,10 @@ awk -v OFS=, -v spacing="$spacing" '
     split($0, v, ",")
     t = v[1]
     if (FNR == 2) t_first = t; else if (FNR == 3) interval = t - t_first
+    ++samples; run_t[samples] = t
     for (c = 2; c <= n; ++c) {
       p = (v[c] == "nan" || v[c] == "-nan") ? 0 : v[c] + 0
+      run_p[c, samples] = p
       if (!(c in first) && p > 1000) first[c] = t
       if (!(c in best) || p > best[c]) { best[c] = p; best_time[c] = t }
       if (t >= 0.45 && t <= 0.55) {
@@ -89,9 +98,22 @@ awk -v OFS=, -v spacing="$spacing" '
     exp_noise = jumps_e ? sqrt(exp_noise / jumps_e) / (exp_mean / bins) : "nan"
     exp_mean /= bins
   }
+  # The largest mean of p over the samples within window of each other: the samples
+  # in (t_k - window, t_k], k from the first full window on. tt, pp by index 1..m;
+  # key: the array key prefix of pp (a column, or a sensor name).
+  function load_peak(tt, pp, key, m,   k, lo, sum, best, found) {
+    lo = 1; sum = 0; found = 0
+    for (k = 1; k <= m; ++k) {
+      sum += pp[key, k]
+      while (tt[lo] <= tt[k] - window + 1e-9) { sum -= pp[key, lo]; ++lo }
+      if (tt[k] - tt[1] + 1e-9 < window - (k > 1 ? (tt[k] - tt[k - 1]) : 0)) continue
+      if (!found || sum / (k - lo + 1) > best) { best = sum / (k - lo + 1); found = 1 }
+    }
+    return found ? best : "nan"
+  }
   END {
     if (interval <= 0) { print "spheric-report: the sensors file has fewer than two samples" > "/dev/stderr"; exit 2 }
-    print "sensor,spacing,rise_s,rise_exp_s,rise_error_ms,peak_kpa,peak_time_s,peak_exp_kpa,peak_error,mean_kpa,mean_exp_kpa,mean_error,sd_kpa,noise,noise_exp"
+    print "sensor,spacing,rise_s,rise_exp_s,rise_error_ms,peak_kpa,peak_time_s,peak_exp_kpa,peak_error,mean_kpa,mean_exp_kpa,mean_error,sd_kpa,noise,noise_exp,load_window_s,load_peak_kpa,load_peak_exp_kpa,load_peak_error"
     for (c = 2; c <= n; ++c) {
       s = head[c]
       m = count[c] ? sum[c] / count[c] : 0
@@ -104,21 +126,27 @@ awk -v OFS=, -v spacing="$spacing" '
       jumps_e = 0
       if (s in exp_col) experiment(s); else { exp_mean = "nan"; exp_noise = "nan" }
       me = (exp_mean != "nan" && exp_mean > 0) ? m / exp_mean - 1 : "nan"
-      printf "%s,%s,%s,%s,%s,%.3f,%s,%.3f,%s,%.3f,%s,%s,%.3f,%s,%s\n", s, spacing, r, rise[s], re, best[c] / 1000, best_time[c], \
-        peak[s] / 1000, pe, m / 1000, exp_mean == "nan" ? "nan" : sprintf("%.3f", exp_mean / 1000), me, sd / 1000, noise, exp_noise
+      lp = load_peak(run_t, run_p, c, samples)
+      lpe = (s in exp_col) ? load_peak(exp_t, exp_p, s, rows) : "nan"
+      le = (lp != "nan" && lpe != "nan" && lpe > 0) ? lp / lpe - 1 : "nan"
+      printf "%s,%s,%s,%s,%s,%.3f,%s,%.3f,%s,%.3f,%s,%s,%.3f,%s,%s,%s,%s,%s,%s\n", s, spacing, r, rise[s], re, best[c] / 1000, best_time[c], \
+        peak[s] / 1000, pe, m / 1000, exp_mean == "nan" ? "nan" : sprintf("%.3f", exp_mean / 1000), me, sd / 1000, noise, exp_noise, \
+        window, lp == "nan" ? "nan" : sprintf("%.3f", lp / 1000), lpe == "nan" ? "nan" : sprintf("%.3f", lpe / 1000), le
     }
   }' "$reference" "$histories" "$sensors" > "$prefix.csv.tmp"
 mv "$prefix.csv.tmp" "$prefix.csv"
 
 awk -F, '
   NR == 1 {
-    print "| sensor | rise (s) | experiment | error (ms) | peak (kPa) | at (s) | experiment | error | mean 0.45-0.55 s (kPa) | experiment | error | sd | noise | experiment |"
-    print "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
     next
   }
+  NR == 2 {
+    printf "| sensor | rise (s) | experiment | error (ms) | peak (kPa) | at (s) | experiment | error | mean 0.45-0.55 s (kPa) | experiment | error | sd | noise | experiment | peak of the %g ms mean (kPa) | experiment | error |\n", 1000 * $16
+    print "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  }
   {
-    printf "| %s | %.4f | %.3f | %+.1f | %.2f | %.4f | %.1f | %+.0f%% | %.2f | %.2f | %+.0f%% | %.2f | %.0f%% | %.0f%% |\n", $1, $3, $4, $5, $6, \
-      $7, $8, 100 * $9, $10, $11, 100 * $12, $13, 100 * $14, 100 * $15
+    printf "| %s | %.4f | %.3f | %+.1f | %.2f | %.4f | %.1f | %+.0f%% | %.2f | %.2f | %+.0f%% | %.2f | %.0f%% | %.0f%% | %.2f | %.2f | %+.0f%% |\n", $1, $3, $4, $5, $6, \
+      $7, $8, 100 * $9, $10, $11, 100 * $12, $13, 100 * $14, 100 * $15, $17, $18, 100 * $19
   }' "$prefix.csv" > "$prefix.md.tmp"
 mv "$prefix.md.tmp" "$prefix.md"
 

@@ -8,8 +8,9 @@
 # is met only when the whole range meets it.
 #
 # From each run's report (spheric-report.sh's PREFIX.csv, one row per sensor), per
-# sensor and figure (rise error, peak error, mean error over 0.45-0.55 s, noise) the
-# mean over the runs and their least and largest value. Writes PREFIX.csv (one row
+# sensor and figure (rise error, peak error, mean error over 0.45-0.55 s, noise, the
+# error of the peak of the moving mean) the mean over the runs and their least and
+# largest value. Writes PREFIX.csv (one row
 # per sensor) and PREFIX.md (a Markdown table).
 #
 #   spheric-spread.sh PREFIX report.csv report.csv [...]
@@ -25,17 +26,18 @@ awk -F, -v OFS=, '
   FNR == 1 {
     delete col
     for (c = 1; c <= NF; ++c) col[$c] = c
-    for (k = 1; k <= 5; ++k)
+    for (k = 1; k <= 6; ++k)
       if (!(figure[k] in col) || !("sensor" in col)) { printf "spheric-spread: %s: no column %s (not a spheric-report.sh report)\n", FILENAME, figure[k] > "/dev/stderr"; bad = 1; exit 2 }
     ++runs
     next
   }
-  BEGIN { split("rise_error_ms peak_error mean_error noise noise_exp", figure, " ") }
+  BEGIN { split("rise_error_ms peak_error mean_error noise load_peak_error noise_exp", figure, " ") }
   {
     s = $col["sensor"]
     if (!(s in seen)) { seen[s] = 1; order[++sensors] = s }
+    if (("load_window_s" in col) && window == "") window = $col["load_window_s"]
     ++count[s]
-    for (k = 1; k <= 5; ++k) {
+    for (k = 1; k <= 6; ++k) {
       v = $col[figure[k]]
       if (v == "nan" || v == "-nan") continue
       v += 0
@@ -47,15 +49,15 @@ awk -F, -v OFS=, '
   END {
     if (bad) exit 2
     header = "sensor,runs"
-    for (k = 1; k <= 4; ++k) header = header "," figure[k] "_mean," figure[k] "_min," figure[k] "_max"
-    print header ",noise_exp"
+    for (k = 1; k <= 5; ++k) header = header "," figure[k] "_mean," figure[k] "_min," figure[k] "_max"
+    print header ",noise_exp,load_window_s"
     for (i = 1; i <= sensors; ++i) {
       s = order[i]
       if (count[s] != runs) { printf "spheric-spread: sensor %s is in %d of the %d reports\n", s, count[s], runs > "/dev/stderr"; exit 2 }
       line = s "," runs
-      for (k = 1; k <= 4; ++k)
+      for (k = 1; k <= 5; ++k)
         line = line "," (n[s, k] ? sprintf("%.4g,%.4g,%.4g", sum[s, k] / n[s, k], lo[s, k], hi[s, k]) : "nan,nan,nan")
-      print line "," (n[s, 5] ? sprintf("%.4g", sum[s, 5] / n[s, 5]) : "nan")
+      print line "," (n[s, 6] ? sprintf("%.4g", sum[s, 6] / n[s, 6]) : "nan") "," window
     }
   }' "$@" > "$prefix.csv.tmp"
 mv "$prefix.csv.tmp" "$prefix.csv"
@@ -66,15 +68,15 @@ awk -F, '
     if (m == "nan") return "-"
     return sprintf("%+.*f%s (%+.*f to %+.*f)", digits, scale * m, unit, digits, scale * a, digits, scale * b)
   }
-  NR == 1 {
-    print "| sensor | runs | rise error (ms) | peak error | mean error 0.45-0.55 s | noise | experiment |"
-    print "|---|---|---|---|---|---|---|"
-    next
+  NR == 1 { next }
+  NR == 2 {
+    printf "| sensor | runs | rise error (ms) | peak error | mean error 0.45-0.55 s | noise | experiment | peak of the %g ms mean, error |\n", 1000 * $19
+    print "|---|---|---|---|---|---|---|---|"
   }
   {
     noise = ($12 == "nan") ? "-" : sprintf("%.0f%% (%.0f to %.0f%%)", 100 * $12, 100 * $13, 100 * $14)
-    printf "| %s | %d | %s | %s | %s | %s | %s |\n", $1, $2, cell($3, $4, $5, 1, "", 1), cell($6, $7, $8, 100, "%", 0), \
-      cell($9, $10, $11, 100, "%", 0), noise, ($15 == "nan") ? "-" : sprintf("%.0f%%", 100 * $15)
+    printf "| %s | %d | %s | %s | %s | %s | %s | %s |\n", $1, $2, cell($3, $4, $5, 1, "", 1), cell($6, $7, $8, 100, "%", 0), \
+      cell($9, $10, $11, 100, "%", 0), noise, ($18 == "nan") ? "-" : sprintf("%.0f%%", 100 * $18), cell($15, $16, $17, 100, "%", 0)
   }' "$prefix.csv" > "$prefix.md.tmp"
 mv "$prefix.md.tmp" "$prefix.md"
 cat "$prefix.md"

@@ -81,6 +81,15 @@ TEST(Spheric, TheReservoirDrainsAndTheFlowReachesTheGaugeAsMeasured) {
   EXPECT_EQ(table.at("sensor"), (std::vector<std::string>{"P1", "P2", "P3", "P4"}));
   for (const std::string& mean : table.at("mean_exp_kpa")) EXPECT_NEAR(std::stod(mean), 6, 1) << "the experiment's";
   for (const std::string& mean : table.at("mean_kpa")) EXPECT_GT(std::stod(mean), 0) << "the water presses the face";
+  // The peak of the 20 ms moving mean: the experiment's from its record (P1 9.86 kPa
+  // against its 11.2 kPa peak, P2 7.60 against 8.1), the run's no more than its
+  // largest sample.
+  EXPECT_NEAR(std::stod(table.at("load_peak_exp_kpa").at(0)), 9.86, 0.05);
+  EXPECT_NEAR(std::stod(table.at("load_peak_exp_kpa").at(1)), 7.60, 0.05);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(table.at("load_window_s").at(i), "0.02");
+    EXPECT_LE(std::stod(table.at("load_peak_kpa").at(i)), std::stod(table.at("peak_kpa").at(i)) + 1e-3);
+  }
 
   // The gauges.
   const auto gauges = test::run(measure + " gauge " + dir.file("run/frames") +
@@ -106,11 +115,13 @@ TEST(Spheric, TheSpreadGivesEachFiguresMeanAndRangeOverTheRuns) {
   test::TempDir dir;
   const std::string header =
       "sensor,spacing,rise_s,rise_exp_s,rise_error_ms,peak_kpa,peak_time_s,peak_exp_kpa,peak_error,mean_kpa,"
-      "mean_exp_kpa,mean_error,sd_kpa,noise,noise_exp\n";
-  std::ofstream(dir.file("a.csv")) << header << "P1,0.02,0.41625,0.394,22.3,27.4,0.441,11.2,1.452,6.46,6.76,-0.044,1.98,0.33,0.013\n"
-                                   << "P2,0.02,0.41875,0.410,8.75,16.0,0.451,8.1,0.974,6.21,6.22,-0.002,2.51,0.49,0.012\n";
-  std::ofstream(dir.file("b.csv")) << header << "P1,0.02,0.41875,0.394,24.7,18.9,0.419,11.2,0.691,7.03,6.76,0.040,3.15,0.51,0.013\n"
-                                   << "P2,0.02,0.41875,0.410,8.75,13.6,0.459,8.1,0.677,6.19,6.22,-0.006,2.48,nan,0.012\n";
+      "mean_exp_kpa,mean_error,sd_kpa,noise,noise_exp,load_window_s,load_peak_kpa,load_peak_exp_kpa,load_peak_error\n";
+  std::ofstream(dir.file("a.csv"))
+      << header << "P1,0.02,0.41625,0.394,22.3,27.4,0.441,11.2,1.452,6.46,6.76,-0.044,1.98,0.33,0.013,0.02,10.02,9.86,0.016\n"
+      << "P2,0.02,0.41875,0.410,8.75,16.0,0.451,8.1,0.974,6.21,6.22,-0.002,2.51,0.49,0.012,0.02,8.57,7.60,0.128\n";
+  std::ofstream(dir.file("b.csv"))
+      << header << "P1,0.02,0.41875,0.394,24.7,18.9,0.419,11.2,0.691,7.03,6.76,0.040,3.15,0.51,0.013,0.02,8.73,9.86,-0.114\n"
+      << "P2,0.02,0.41875,0.410,8.75,13.6,0.459,8.1,0.677,6.19,6.22,-0.006,2.48,nan,0.012,0.02,8.62,7.60,0.134\n";
   const std::string spread = kSource + "/tests/study/spheric-spread.sh " + dir.file("spread") + " ";
   const auto r = test::run(spread + dir.file("a.csv") + " " + dir.file("b.csv"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -122,12 +133,17 @@ TEST(Spheric, TheSpreadGivesEachFiguresMeanAndRangeOverTheRuns) {
   EXPECT_DOUBLE_EQ(std::stod(table.at("peak_error_max").at(0)), 1.452);
   EXPECT_DOUBLE_EQ(std::stod(table.at("noise_mean").at(0)), 0.42);
   EXPECT_DOUBLE_EQ(std::stod(table.at("noise_mean").at(1)), 0.49) << "a run without a figure leaves it out";
+  EXPECT_DOUBLE_EQ(std::stod(table.at("load_peak_error_mean").at(0)), -0.049);
+  EXPECT_EQ(table.at("load_window_s").at(0), "0.02");
   EXPECT_NE(r.out.find("| P1 | 2 | +23.5 (+22.3 to +24.7) | +107% (+69 to +145) |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("peak of the 20 ms mean, error |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| -5% (-11 to +2) |"), std::string::npos) << r.out;
 
   // One report is no spread; a report without a sensor of the others, or a file that
   // is no report, is refused.
   EXPECT_EQ(test::run(spread + dir.file("a.csv")).exit_code, 2);
-  std::ofstream(dir.file("c.csv")) << header << "P1,0.02,0.41625,0.394,22.3,27.4,0.441,11.2,1.452,6.46,6.76,-0.044,1.98,0.33,0.013\n";
+  std::ofstream(dir.file("c.csv"))
+      << header << "P1,0.02,0.41625,0.394,22.3,27.4,0.441,11.2,1.452,6.46,6.76,-0.044,1.98,0.33,0.013,0.02,10.02,9.86,0.016\n";
   const auto missing = test::run(spread + dir.file("a.csv") + " " + dir.file("c.csv"));
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.err.find("sensor P2 is in 1 of the 2 reports"), std::string::npos) << missing.err;
