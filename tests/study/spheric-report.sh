@@ -106,7 +106,8 @@ awk -v OFS=, -v spacing="$spacing" -v window="$window" '
     for (k = 1; k <= m; ++k) {
       sum += pp[key, k]
       while (tt[lo] <= tt[k] - window + 1e-9) { sum -= pp[key, lo]; ++lo }
-      if (tt[k] - tt[1] + 1e-9 < window - (k > 1 ? (tt[k] - tt[k - 1]) : 0)) continue
+      # a window that reaches back before the first sample is not a full one
+      if (k == 1 || tt[k] - tt[1] < window - (tt[k] - tt[k - 1]) - 1e-9) continue
       if (!found || sum / (k - lo + 1) > best) { best = sum / (k - lo + 1); found = 1 }
     }
     return found ? best : "nan"
