@@ -10,8 +10,8 @@
 # From each run's report (spheric-report.sh's PREFIX.csv, one row per sensor), per
 # sensor and figure (rise error, peak error, mean error over 0.45-0.55 s, noise, the
 # error of the peak of the moving mean) the mean over the runs and their least and
-# largest value. Writes PREFIX.csv (one row
-# per sensor) and PREFIX.md (a Markdown table).
+# largest value. Writes PREFIX.csv (one row per sensor) and PREFIX.md (a Markdown
+# table).
 #
 #   spheric-spread.sh PREFIX report.csv report.csv [...]
 set -euo pipefail
