@@ -3,13 +3,14 @@
 # (tools/gpu-bundle.sh) on one OpenCL device, for a machine with only a GPU driver:
 # the scene at each spacing, diffusion coefficient and kernel vector width asked
 # for, each run its face sensors' report against the experiment (rise, peak, mean
-# and noise over 0.45-0.55 s; tests/study/spheric-report.sh) and, where a spacing
-# and coefficient ran at two widths or more, the spread over those draws
-# (tests/study/spheric-spread.sh). The driver is set up as tools/gpu-check.sh does it
-# (tools/gpu-driver.sh). Runs go in the order given, cheapest first is best; each has
-# what is left of --budget, and one stopped at its limit (SIGTERM: bw-sim closes its
-# files) is reported as far as it went. Run from the repository's root (the report
-# scripts and the experiment's data are the working tree's).
+# and noise over 0.45-0.55 s, the peak of the 20 ms mean;
+# tests/study/spheric-report.sh) and, where a spacing and coefficient ran at two
+# widths or more, the spread over those draws (tests/study/spheric-spread.sh). The
+# driver is set up as tools/gpu-check.sh does it (tools/gpu-driver.sh). Runs go in
+# the order given, cheapest first is best; each has what is left of --budget, and
+# one stopped at its limit (SIGTERM: bw-sim closes its files) is reported as far as
+# it went. Run from the repository's root (the report scripts and the experiment's
+# data are the working tree's).
 #
 #   tools/gpu-spheric.sh --bundle out/gpu-bundle.tar.gz --out out/gpu-spheric \
 #       --spacings 0.02,0.01 --diffusion 0.1,0.3 --widths device,2
@@ -20,8 +21,9 @@
 # simulated and wall seconds, fluid particles, device), summary.md (every report's
 # table), gpu-spheric.log, and SPACING/dDELTA-wWIDTH/ per run (sensors.csv and the
 # report spheric2.{csv,md}, spheric2.png where gnuplot is installed) and
-# SPACING/dDELTA/spheric2-spread.{csv,md}. Exit status 0 when every run reached
-# --end, 1 when one failed or stopped short, 2 on bad usage.
+# SPACING/dDELTA/spheric2-spread.{csv,md} (DELTA "scene" without --diffusion). Exit
+# status 0 when every run reached --end, 1 when one failed or stopped short, 2 on
+# bad usage.
 set -euo pipefail
 
 usage() {
@@ -34,7 +36,9 @@ Options:
   --diffusion LIST  fluid.diffusion values (default: the scene's, 0.1)
   --widths LIST     kernel vector widths: device (the device's own) or 1, 2, 4, 8, 16 (default device)
   --end S           simulated seconds of each run (default 0.56: past the window 0.45-0.55 s)
-  --frames HZ       frames a second written (default 10; the sensors are sampled apart from them)
+  --frames HZ       frames a second written (default 10; the sensors are sampled apart from them). A run
+                    stopped at its limit finishes its frame (killed 90 s after): at millions of
+                    particles take 20 or more
   --device gpu|cpu  the OpenCL device type (default gpu)
   --budget S        wall-clock seconds for all the runs (default 540)
   --work DIR        keep the runs' files here (default: a temporary folder, removed)
@@ -146,10 +150,10 @@ for s in "${spacing_list[@]}"; do
       rc=0 t0=$SECONDS
       # The width in bw-sim's environment only (libcore/compute/kernels.cpp).
       if [[ $w == device ]]; then
-        env -u BW_KERNEL_VECTOR_WIDTH timeout -s TERM -k 60 "$limit" "$B/bw-sim" "$root/examples/spheric2.toml" \
+        env -u BW_KERNEL_VECTOR_WIDTH timeout -s TERM -k 90 "$limit" "$B/bw-sim" "$root/examples/spheric2.toml" \
           -o "$run" --device "$device" "${sets[@]}" > "$dir/bw-sim.log" 2>&1 || rc=$?
       else
-        BW_KERNEL_VECTOR_WIDTH=$w timeout -s TERM -k 60 "$limit" "$B/bw-sim" "$root/examples/spheric2.toml" \
+        BW_KERNEL_VECTOR_WIDTH=$w timeout -s TERM -k 90 "$limit" "$B/bw-sim" "$root/examples/spheric2.toml" \
           -o "$run" --device "$device" "${sets[@]}" > "$dir/bw-sim.log" 2>&1 || rc=$?
       fi
       if [[ ! -s $run/run.h5 ]] || ! "$B/bw-measure" sensors "$run/run.h5" > "$dir/sensors.csv" 2>> "$log"; then
