@@ -149,13 +149,10 @@ for s in "${spacing_list[@]}"; do
       [[ $d == scene ]] || sets+=(--set "fluid.diffusion=$d")
       rc=0 t0=$SECONDS
       # The width in bw-sim's environment only (libcore/compute/kernels.cpp).
-      if [[ $w == device ]]; then
-        env -u BW_KERNEL_VECTOR_WIDTH timeout -s TERM -k 90 "$limit" "$B/bw-sim" "$root/examples/spheric2.toml" \
-          -o "$run" --device "$device" "${sets[@]}" > "$dir/bw-sim.log" 2>&1 || rc=$?
-      else
-        BW_KERNEL_VECTOR_WIDTH=$w timeout -s TERM -k 90 "$limit" "$B/bw-sim" "$root/examples/spheric2.toml" \
-          -o "$run" --device "$device" "${sets[@]}" > "$dir/bw-sim.log" 2>&1 || rc=$?
-      fi
+      width_env=(BW_KERNEL_VECTOR_WIDTH="$w")
+      [[ $w != device ]] || width_env=(-u BW_KERNEL_VECTOR_WIDTH)
+      env "${width_env[@]}" timeout -s TERM -k 90 "$limit" "$B/bw-sim" "$root/examples/spheric2.toml" \
+        -o "$run" --device "$device" "${sets[@]}" > "$dir/bw-sim.log" 2>&1 || rc=$?
       if [[ ! -s $run/run.h5 ]] || ! "$B/bw-measure" sensors "$run/run.h5" > "$dir/sensors.csv" 2>> "$log"; then
         say "$s m, $name: bw-sim exit $rc, no sensors ($(tail -1 "$dir/bw-sim.log" | cut -c1-200))"
         echo "$s,$d,$w,$rc,,,$(( SECONDS - t0 )),," >> "$out/runs.csv"
