@@ -13,6 +13,7 @@
 // The face pressures at 0.04 m are one particle's patch each, their 0.1 s means
 // uncertain by tens of percent: the reports must hold them, the test asserts nothing
 // of their size.
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -151,6 +152,64 @@ TEST(Spheric, TheSpreadGivesEachFiguresMeanAndRangeOverTheRuns) {
   const auto other = test::run(spread + dir.file("a.csv") + " " + dir.file("sensors.csv"));
   EXPECT_EQ(other.exit_code, 2);
   EXPECT_NE(other.err.find("no column rise_error_ms"), std::string::npos) << other.err;
+}
+
+// spheric-convergence.sh: the mean peak at each spacing fitted with P0 + k dx and the
+// noise with C dx^p (Makefile.scenes spheric2-convergence). Reports whose peaks lie on
+// 11 + 700 dx kPa and whose noise is 100 dx^1.5, two draws at 0.02 m.
+TEST(Spheric, TheConvergenceFitsThePeaksAndTheNoiseOverTheSpacings) {
+  test::TempDir dir;
+  const std::string header =
+      "sensor,spacing,rise_s,rise_exp_s,rise_error_ms,peak_kpa,peak_time_s,peak_exp_kpa,peak_error,mean_kpa,"
+      "mean_exp_kpa,mean_error,sd_kpa,noise,noise_exp,load_window_s,load_peak_kpa,load_peak_exp_kpa,load_peak_error\n";
+  const auto report = [&](const std::string& name, const std::string& dx, double p1, double noise, double p2) {
+    std::ofstream(dir.file(name)) << header << "P1," << dx << ",0.416,0.394,22,"
+                                  << p1 << ",0.44,11.2,0,6.5,6.76,0,2,"
+                                  << noise << ",0.013,0.02,10,9.86,0\n"
+                                  << "P2," << dx << ",0.419,0.410,9," << p2
+                                  << ",0.45,8.1,0,6.2,6.22,0,2,nan,0.012,0.02,8.6,7.6,0\n";
+  };
+  report("a.csv", "0.02", 26.0, 0.28284271, 15.0);
+  report("b.csv", "0.02", 24.0, 0.28284271, 13.0);  // a mean of 25 kPa
+  report("c.csv", "0.01", 18.0, 0.1, 10.0);
+  report("d.csv", "0.005", 14.5, 0.035355339, 11.0);
+  const std::string convergence = kSource + "/tests/study/spheric-convergence.sh " + dir.file("conv") + " ";
+  const auto r = test::run(convergence + dir.file("a.csv") + " " + dir.file("b.csv") + " " + dir.file("c.csv") + " " +
+                           dir.file("d.csv"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto table = read_csv(dir.file("conv.csv"));
+  ASSERT_EQ(table.at("sensor"), (std::vector<std::string>{"P1", "P2"}));
+  EXPECT_EQ(table.at("spacings").at(0), "3");
+  EXPECT_EQ(table.at("peaks_kpa").at(0), "0.02:25:2;0.01:18:1;0.005:14.5:1");
+  EXPECT_NEAR(std::stod(table.at("peak_limit_kpa").at(0)), 11.0, 1e-3);
+  EXPECT_NEAR(std::stod(table.at("peak_slope_kpa_per_m").at(0)), 700.0, 0.1);
+  EXPECT_NEAR(std::stod(table.at("peak_fit_residual").at(0)), 0.0, 1e-4) << "the peaks lie on the line";
+  // 11 + 700 dx within 30% of 11.2 kPa up to (14.56 - 11) / 700 m, within 20% up to
+  // (13.44 - 11) / 700 m
+  EXPECT_EQ(std::stod(table.at("within30_min_m").at(0)), 0.0);
+  EXPECT_NEAR(std::stod(table.at("within30_max_m").at(0)), 3.56 / 700, 1e-6);
+  EXPECT_NEAR(std::stod(table.at("within20_max_m").at(0)), 2.44 / 700, 1e-6);
+  EXPECT_NEAR(std::stod(table.at("noise_order").at(0)), 1.5, 1e-3);
+  EXPECT_NEAR(std::stod(table.at("noise25_m").at(0)), std::pow(0.0025, 2.0 / 3.0), 1e-5);
+  // P2's mean peaks, 14, 10 and 11 kPa, are not on a line: the least-squares line is
+  // 9 + 1600/7 dx, 9/7 kPa from the peak at 0.01 m; its noise, nan in every report, is
+  // left out.
+  EXPECT_NEAR(std::stod(table.at("peak_slope_kpa_per_m").at(1)), 1600.0 / 7.0, 0.1);
+  EXPECT_NEAR(std::stod(table.at("peak_limit_kpa").at(1)), 9.0, 1e-3);
+  EXPECT_NEAR(std::stod(table.at("peak_fit_residual").at(1)), 9.0 / 7.0 / 8.1, 1e-3);
+  EXPECT_EQ(table.at("noise_order").at(1), "nan");
+  EXPECT_NE(r.out.find("| P1 | 0.02 m: 25.00 (2 runs), 0.01 m: 18.00, 0.005 m: 14.50 | 11.00 kPa (experiment 11.2), -2% |"),
+            std::string::npos)
+      << r.out;
+
+  // One spacing is no convergence; a file that is no report is refused.
+  const auto one = test::run(convergence + dir.file("a.csv") + " " + dir.file("b.csv"));
+  EXPECT_EQ(one.exit_code, 2);
+  EXPECT_NE(one.err.find("sensor P1 is at one spacing only"), std::string::npos) << one.err;
+  std::ofstream(dir.file("sensors.csv")) << "time,P1\n0.00125,0\n";
+  const auto other = test::run(convergence + dir.file("a.csv") + " " + dir.file("sensors.csv"));
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_NE(other.err.find("no column sensor"), std::string::npos) << other.err;
 }
 
 }  // namespace
