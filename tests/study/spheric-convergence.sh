@@ -10,7 +10,8 @@
 # it (the targets of docs/validation.md). The sample-to-sample noise is fitted with
 # a power of the spacing, noise = C dx^p, and the spacing where it is 25% printed.
 # With three spacings or more the largest distance of a spacing's mean peak from the
-# line says whether the first order holds.
+# line says whether the first order holds. Beside them the mean rise error at each
+# spacing, which no line extrapolates.
 #
 # Writes PREFIX.csv (one row per sensor) and PREFIX.md (a Markdown table).
 #
@@ -25,11 +26,11 @@ shift
 for f in "$@"; do [[ -s $f ]] || die "$f: missing or empty (a report of spheric-report.sh)"; done
 
 awk -F, -v OFS=, '
-  BEGIN { split("sensor spacing peak_kpa peak_exp_kpa noise", need, " ") }
+  BEGIN { split("sensor spacing peak_kpa peak_exp_kpa noise rise_error_ms", need, " ") }
   FNR == 1 {
     delete col
     for (c = 1; c <= NF; ++c) col[$c] = c
-    for (k = 1; k <= 5; ++k)
+    for (k = 1; k <= 6; ++k)
       if (!(need[k] in col)) { printf "spheric-convergence: %s: no column %s (not a spheric-report.sh report)\n", FILENAME, need[k] > "/dev/stderr"; bad = 1; exit 2 }
     next
   }
@@ -42,6 +43,8 @@ awk -F, -v OFS=, '
     exp_kpa[s] = $col["peak_exp_kpa"] + 0
     v = $col["peak_kpa"]
     if (v != "nan" && v != "-nan") { peak_sum[s, dx] += v; ++peak_n[s, dx] }
+    v = $col["rise_error_ms"]
+    if (v != "nan" && v != "-nan") { rise_sum[s, dx] += v; ++rise_n[s, dx] }
     v = $col["noise"]
     if (v != "nan" && v != "-nan" && v + 0 > 0) { noise_sum[s, dx] += v; ++noise_n[s, dx] }
   }
@@ -57,7 +60,7 @@ awk -F, -v OFS=, '
   }
   END {
     if (bad) exit 2
-    print "sensor,spacings,peaks_kpa,peak_exp_kpa,peak_limit_kpa,peak_limit_error,peak_slope_kpa_per_m,peak_fit_residual,within30_min_m,within30_max_m,within20_min_m,within20_max_m,noises,noise_order,noise25_m"
+    print "sensor,spacings,rises_error_ms,peaks_kpa,peak_exp_kpa,peak_limit_kpa,peak_limit_error,peak_slope_kpa_per_m,peak_fit_residual,within30_min_m,within30_max_m,within20_min_m,within20_max_m,noises,noise_order,noise25_m"
     for (i = 1; i <= sensors; ++i) {
       s = order[i]; m = nspacing[s]
       if (m < 2) { printf "spheric-convergence: sensor %s is at one spacing only (a convergence needs two or more)\n", s > "/dev/stderr"; exit 2 }
@@ -65,7 +68,7 @@ awk -F, -v OFS=, '
       for (a = 1; a <= m; ++a) for (b = a + 1; b <= m; ++b)
         if (spacing[s, b] > spacing[s, a]) { t = spacing[s, a]; spacing[s, a] = spacing[s, b]; spacing[s, b] = t }
       n = 0; sx = sy = sxx = sxy = 0; nl = 0; lx = ly = lxx = lxy = 0
-      peaks = noises = ""
+      peaks = noises = rises = ""
       for (a = 1; a <= m; ++a) {
         dx = spacing[s, a]
         if (peak_n[s, dx]) {
@@ -73,6 +76,7 @@ awk -F, -v OFS=, '
           ++n; sx += dx; sy += y; sxx += dx * dx; sxy += dx * y
           peaks = peaks (peaks == "" ? "" : ";") sprintf("%g:%.4g:%d", dx, y, peak_n[s, dx])
         } else py[a] = "nan"
+        if (rise_n[s, dx]) rises = rises (rises == "" ? "" : ";") sprintf("%g:%.4g", dx, rise_sum[s, dx] / rise_n[s, dx])
         if (noise_n[s, dx]) {
           y = noise_sum[s, dx] / noise_n[s, dx]
           ++nl; lx += log(dx); ly += log(y); lxx += log(dx) ^ 2; lxy += log(dx) * log(y)
@@ -80,7 +84,7 @@ awk -F, -v OFS=, '
         }
       }
       e = exp_kpa[s]
-      line = s "," m "," peaks "," e
+      line = s "," m "," rises "," peaks "," e
       if (n >= 2 && n * sxx - sx * sx > 0) {
         k = (n * sxy - sx * sy) / (n * sxx - sx * sx); p0 = (sy - k * sx) / n
         worst = "nan"
@@ -107,12 +111,12 @@ mv "$prefix.csv.tmp" "$prefix.csv"
 
 awk -F, '
   # "0.02 m: 25.8 (5 runs), 0.01 m: 18.4" from "0.02:25.8:5;0.01:18.4:1", each scaled
-  function list(cell, scale, unit, digits,    parts, kv, i, out) {
+  function list(cell, scale, unit, digits, sign,    parts, kv, i, out) {
     if (cell == "") return "-"
     split(cell, parts, ";")
     for (i = 1; i in parts; ++i) {
       split(parts[i], kv, ":")
-      out = out (i > 1 ? ", " : "") sprintf("%s m: %.*f%s", kv[1], digits, scale * kv[2], unit)
+      out = out (i > 1 ? ", " : "") sprintf(sign ? "%s m: %+.*f%s" : "%s m: %.*f%s", kv[1], digits, scale * kv[2], unit)
       if (kv[3] > 1) out = out " (" kv[3] " runs)"
     }
     return out
@@ -124,14 +128,14 @@ awk -F, '
   }
   NR == 1 { next }
   NR == 2 {
-    print "| sensor | peak (kPa), mean over the runs | limit of peak = P0 + k dx, error | largest distance from the line | within 30% | within 20% | noise | noise order | noise 25% at |"
-    print "|---|---|---|---|---|---|---|---|---|"
+    print "| sensor | rise error (ms) | peak (kPa), mean over the runs | limit of peak = P0 + k dx, error | largest distance from the line | within 30% | within 20% | noise | noise order | noise 25% at |"
+    print "|---|---|---|---|---|---|---|---|---|---|"
   }
   {
-    limit = ($5 == "nan") ? "-" : sprintf("%.2f kPa (experiment %.1f), %+.0f%%", $5, $4, 100 * $6)
-    residual = ($8 == "nan") ? "- (two spacings)" : sprintf("%.1f%% of the experiment", 100 * $8)
-    printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, list($3, 1, "", 2), limit, residual, \
-      span($9, $10), span($11, $12), list($13, 100, "%", 0), ($14 == "nan") ? "-" : $14, ($15 == "") ? "-" : sprintf("%.4g m", $15)
+    limit = ($6 == "nan") ? "-" : sprintf("%.2f kPa (experiment %.1f), %+.0f%%", $6, $5, 100 * $7)
+    residual = ($9 == "nan") ? "- (two spacings)" : sprintf("%.1f%% of the experiment", 100 * $9)
+    printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, list($3, 1, "", 1, 1), list($4, 1, "", 2), limit, residual, \
+      span($10, $11), span($12, $13), list($14, 100, "%", 0), ($15 == "nan") ? "-" : $15, ($16 == "") ? "-" : sprintf("%.4g m", $16)
   }' "$prefix.csv" > "$prefix.md.tmp"
 mv "$prefix.md.tmp" "$prefix.md"
 cat "$prefix.md"

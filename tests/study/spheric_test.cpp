@@ -181,6 +181,7 @@ TEST(Spheric, TheConvergenceFitsThePeaksAndTheNoiseOverTheSpacings) {
   ASSERT_EQ(table.at("sensor"), (std::vector<std::string>{"P1", "P2"}));
   EXPECT_EQ(table.at("spacings").at(0), "3");
   EXPECT_EQ(table.at("peaks_kpa").at(0), "0.02:25:2;0.01:18:1;0.005:14.5:1");
+  EXPECT_EQ(table.at("rises_error_ms").at(0), "0.02:22;0.01:22;0.005:22");
   EXPECT_NEAR(std::stod(table.at("peak_limit_kpa").at(0)), 11.0, 1e-3);
   EXPECT_NEAR(std::stod(table.at("peak_slope_kpa_per_m").at(0)), 700.0, 0.1);
   EXPECT_NEAR(std::stod(table.at("peak_fit_residual").at(0)), 0.0, 1e-4) << "the peaks lie on the line";
@@ -198,7 +199,8 @@ TEST(Spheric, TheConvergenceFitsThePeaksAndTheNoiseOverTheSpacings) {
   EXPECT_NEAR(std::stod(table.at("peak_limit_kpa").at(1)), 9.0, 1e-3);
   EXPECT_NEAR(std::stod(table.at("peak_fit_residual").at(1)), 9.0 / 7.0 / 8.1, 1e-3);
   EXPECT_EQ(table.at("noise_order").at(1), "nan");
-  EXPECT_NE(r.out.find("| P1 | 0.02 m: 25.00 (2 runs), 0.01 m: 18.00, 0.005 m: 14.50 | 11.00 kPa (experiment 11.2), -2% |"),
+  EXPECT_NE(r.out.find("| P1 | 0.02 m: +22.0, 0.01 m: +22.0, 0.005 m: +22.0 | 0.02 m: 25.00 (2 runs), 0.01 m: 18.00, "
+                       "0.005 m: 14.50 | 11.00 kPa (experiment 11.2), -2% |"),
             std::string::npos)
       << r.out;
 
