@@ -124,7 +124,7 @@ awk -F, '
   function span(lo, hi) {
     if (lo == "") return "none"
     if (hi == "inf") return "any spacing"
-    return (lo + 0 > 0) ? sprintf("%.4g to %.4g m", lo, hi) : sprintf("up to %.4g m", hi)
+    return (lo + 0 > 0) ? sprintf("%.4f to %.4f m", lo, hi) : sprintf("up to %.4f m", hi)
   }
   NR == 1 { next }
   NR == 2 {
@@ -135,7 +135,7 @@ awk -F, '
     limit = ($6 == "nan") ? "-" : sprintf("%.2f kPa (experiment %.1f), %+.0f%%", $6, $5, 100 * $7)
     residual = ($9 == "nan") ? "- (two spacings)" : sprintf("%.1f%% of the experiment", 100 * $9)
     printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, list($3, 1, "", 1, 1), list($4, 1, "", 2), limit, residual, \
-      span($10, $11), span($12, $13), list($14, 100, "%", 0), ($15 == "nan") ? "-" : $15, ($16 == "") ? "-" : sprintf("%.4g m", $16)
+      span($10, $11), span($12, $13), list($14, 100, "%", 0), ($15 == "nan") ? "-" : $15, ($16 == "") ? "-" : sprintf("%.4f m", $16)
   }' "$prefix.csv" > "$prefix.md.tmp"
 mv "$prefix.md.tmp" "$prefix.md"
 cat "$prefix.md"
