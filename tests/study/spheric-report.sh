@@ -114,6 +114,8 @@ awk -v OFS=, -v spacing="$spacing" -v window="$window" '
   }
   END {
     if (interval <= 0) { print "spheric-report: the sensors file has fewer than two samples" > "/dev/stderr"; exit 2 }
+    # a run that stops before 0.55 s has no mean over 0.45-0.55 s (a first impact alone)
+    covered = run_t[samples] + interval >= 0.55 - 1e-9
     print "sensor,spacing,rise_s,rise_exp_s,rise_error_ms,peak_kpa,peak_time_s,peak_exp_kpa,peak_error,mean_kpa,mean_exp_kpa,mean_error,sd_kpa,noise,noise_exp,load_window_s,load_peak_kpa,load_peak_exp_kpa,load_peak_error"
     for (c = 2; c <= n; ++c) {
       s = head[c]
@@ -121,17 +123,19 @@ awk -v OFS=, -v spacing="$spacing" -v window="$window" '
       var = count[c] ? sum2[c] / count[c] - m * m : 0
       sd = var > 0 ? sqrt(var) : 0
       noise = (jumps[c] && m > 0) ? sqrt(jump[c] / jumps[c]) / m : "nan"
+      if (!covered) { m = "nan"; sd = "nan"; noise = "nan" }
       r = (c in first) ? first[c] : "nan"
       re = (c in first && s in rise) ? (first[c] - rise[s]) * 1000 : "nan"
       pe = (s in peak && peak[s] > 0) ? best[c] / peak[s] - 1 : "nan"
       jumps_e = 0
       if (s in exp_col) experiment(s); else { exp_mean = "nan"; exp_noise = "nan" }
-      me = (exp_mean != "nan" && exp_mean > 0) ? m / exp_mean - 1 : "nan"
+      me = (m != "nan" && exp_mean != "nan" && exp_mean > 0) ? m / exp_mean - 1 : "nan"
       lp = load_peak(run_t, run_p, c, samples)
       lpe = (s in exp_col) ? load_peak(exp_t, exp_p, s, rows) : "nan"
       le = (lp != "nan" && lpe != "nan" && lpe > 0) ? lp / lpe - 1 : "nan"
-      printf "%s,%s,%s,%s,%s,%.3f,%s,%.3f,%s,%.3f,%s,%s,%.3f,%s,%s,%s,%s,%s,%s\n", s, spacing, r, rise[s], re, best[c] / 1000, best_time[c], \
-        peak[s] / 1000, pe, m / 1000, exp_mean == "nan" ? "nan" : sprintf("%.3f", exp_mean / 1000), me, sd / 1000, noise, exp_noise, \
+      printf "%s,%s,%s,%s,%s,%.3f,%s,%.3f,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", s, spacing, r, rise[s], re, best[c] / 1000, best_time[c], \
+        peak[s] / 1000, pe, m == "nan" ? "nan" : sprintf("%.3f", m / 1000), exp_mean == "nan" ? "nan" : sprintf("%.3f", exp_mean / 1000), me, \
+        sd == "nan" ? "nan" : sprintf("%.3f", sd / 1000), noise, exp_noise, \
         window, lp == "nan" ? "nan" : sprintf("%.3f", lp / 1000), lpe == "nan" ? "nan" : sprintf("%.3f", lpe / 1000), le
     }
   }' "$reference" "$histories" "$sensors" > "$prefix.csv.tmp"
@@ -145,9 +149,12 @@ awk -F, '
     printf "| sensor | rise (s) | experiment | error (ms) | peak (kPa) | at (s) | experiment | error | mean 0.45-0.55 s (kPa) | experiment | error | sd | noise | experiment | peak of the %g ms mean (kPa) | experiment | error |\n", 1000 * $16
     print "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
   }
+  # a figure, or "-" where the run has none (a run that stops before 0.55 s has no mean)
+  function fig(v, format, scale) { return (v == "nan" || v == "-nan") ? "-" : sprintf(format, scale * v) }
   {
-    printf "| %s | %.4f | %.3f | %+.1f | %.2f | %.4f | %.1f | %+.0f%% | %.2f | %.2f | %+.0f%% | %.2f | %.0f%% | %.0f%% | %.2f | %.2f | %+.0f%% |\n", $1, $3, $4, $5, $6, \
-      $7, $8, 100 * $9, $10, $11, 100 * $12, $13, 100 * $14, 100 * $15, $17, $18, 100 * $19
+    printf "| %s | %.4f | %.3f | %+.1f | %.2f | %.4f | %.1f | %+.0f%% | %s | %.2f | %s | %s | %s | %.0f%% | %.2f | %.2f | %+.0f%% |\n", $1, $3, $4, $5, $6, \
+      $7, $8, 100 * $9, fig($10, "%.2f", 1), $11, fig($12, "%+.0f%%", 100), fig($13, "%.2f", 1), fig($14, "%.0f%%", 100), 100 * $15, \
+      $17, $18, 100 * $19
   }' "$prefix.csv" > "$prefix.md.tmp"
 mv "$prefix.md.tmp" "$prefix.md"
 

@@ -16,9 +16,11 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -108,6 +110,50 @@ TEST(Spheric, TheReservoirDrainsAndTheFlowReachesTheGaugeAsMeasured) {
   EXPECT_LT(h4_rms, kSpacing) << "the reservoir's level against the experiment's, RMS over 0.15-0.56 s";
   const double body = std::stod(summary.at("t50_s")[0]), body_exp = std::stod(summary.at("t50_exp_s")[0]);
   EXPECT_NEAR(body, body_exp, kBodyTolerance) << "50 mm deep at H2";
+}
+
+// spheric-report.sh on histories made up to be read by eye: every sensor 0 until 0.4 s,
+// then a steady 6 kPa with one sample of 12 kPa at 0.41125 s. A run that stops before
+// 0.55 s (a first impact alone, Makefile.scenes spheric2-slice) has no mean, spread or
+// noise over 0.45-0.55 s: the report says so rather than average what it has.
+TEST(Spheric, TheReportHasNoMeanWhereTheRunStopsBeforeItsWindowEnds) {
+  test::TempDir dir;
+  const auto write = [&](const std::string& path, double end) {
+    std::ofstream out(path);
+    out << "time,P1,P2,P3,P4\n";
+    for (int k = 0; (k + 0.5) * 0.0025 < end; ++k) {
+      const double t = (k + 0.5) * 0.0025, p = t < 0.4 ? 0.0 : (k == 164 ? 12000.0 : 6000.0);
+      out << t << "," << p << "," << p << "," << p << "," << p << "\n";
+    }
+  };
+  const std::string report = kSource + "/tests/study/spheric-report.sh ";
+  const std::string reference = " " + kSource + "/examples/data/spheric-test2-pressure.txt ";
+  for (const auto& [name, end, covered] : {std::tuple{"short", 0.46, false}, std::tuple{"long", 0.56, true}}) {
+    SCOPED_TRACE(name);
+    const std::string sensors = dir.file(std::string(name) + "-sensors.csv"), prefix = dir.file(name);
+    write(sensors, end);
+    const auto r = test::run(report + sensors + reference + prefix + " 0.01");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto table = read_csv(prefix + ".csv");
+    std::ifstream md_file(prefix + ".md");
+    const std::string md((std::istreambuf_iterator<char>(md_file)), std::istreambuf_iterator<char>());
+    ASSERT_EQ(table.at("sensor"), (std::vector<std::string>{"P1", "P2", "P3", "P4"}));
+    EXPECT_NEAR(std::stod(table.at("rise_s").at(0)), 0.40125, 1e-9);
+    EXPECT_NEAR(std::stod(table.at("peak_kpa").at(0)), 12.0, 1e-9);
+    EXPECT_NEAR(std::stod(table.at("peak_time_s").at(0)), 0.41125, 1e-9);
+    EXPECT_NEAR(std::stod(table.at("load_peak_kpa").at(0)), 6.0 + 6.0 / 8, 1e-3) << "8 samples in 20 ms";
+    if (covered) {
+      EXPECT_NEAR(std::stod(table.at("mean_kpa").at(0)), 6.0, 1e-9);
+      EXPECT_NEAR(std::stod(table.at("sd_kpa").at(0)), 0.0, 1e-9);
+      EXPECT_NEAR(std::stod(table.at("noise").at(0)), 0.0, 1e-9);
+      EXPECT_NE(md.find("| 6.00 | 6.76 | -11% | 0.00 | 0% |"), std::string::npos) << md;
+    } else {
+      for (const char* column : {"mean_kpa", "mean_error", "sd_kpa", "noise"})
+        EXPECT_EQ(table.at(column).at(0), "nan") << column;
+      EXPECT_NEAR(std::stod(table.at("mean_exp_kpa").at(0)), 6.76, 0.01) << "the experiment's is still there";
+      EXPECT_NE(md.find("| - | 6.76 | - | - | - |"), std::string::npos) << md;
+    }
+  }
 }
 
 // spheric-spread.sh: each figure's mean and range over the reports of several runs
