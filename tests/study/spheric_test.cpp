@@ -112,6 +112,34 @@ TEST(Spheric, TheReservoirDrainsAndTheFlowReachesTheGaugeAsMeasured) {
   EXPECT_NEAR(body, body_exp, kBodyTolerance) << "50 mm deep at H2";
 }
 
+// The slice through the box (examples/spheric2-slice-box.toml, Makefile.scenes
+// spheric2-slice): at each spacing its target may run, the slice's walls and the box's
+// faces lie on cell planes, so the column starts at rest density beside them and every
+// sensor's disc sits on the face; at 0.02 m the slice is two particles wide and its
+// face has no particle inside its edges, which bw-sim names. A few steps at each.
+TEST(Spheric, TheSliceStartsAtEachSpacingItsTargetRuns) {
+  test::TempDir dir;
+  for (const std::string s : {"0.01", "0.008", "0.005", "0.004", "0.02"}) {
+    SCOPED_TRACE(s);
+    for (const auto& [mesh, file] : {std::pair{"spheric_slice", "tank"}, std::pair{"spheric_slice_box", "box"}}) {
+      const auto r = test::run(test::tool("bw-sample") + " " + kSource + "/examples/meshes/" + mesh + ".obj -o " +
+                               dir.file(s + file + ".h5") + " --spacing " + s);
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+    }
+    const auto sim = test::run(test::tool("bw-sim") + " " + kSource + "/examples/spheric2-slice-box.toml -o " +
+                               dir.file("run" + s) + " --quiet --set spacing=" + s + " --set 'solid[0].particles=" +
+                               dir.file(s + "tank.h5") + "' --set 'solid[1].particles=" + dir.file(s + "box.h5") +
+                               "' --set time.frame_rate=4000 --end-time 0.00025");
+    if (s == "0.02") {
+      EXPECT_EQ(sim.exit_code, 2);
+      EXPECT_NE(sim.err.find("sensor[0] 'P1'"), std::string::npos) << sim.err;
+      continue;
+    }
+    ASSERT_EQ(sim.exit_code, 0) << sim.err;
+    EXPECT_TRUE(sim.err.empty()) << sim.err;
+  }
+}
+
 // spheric-report.sh on histories made up to be read by eye: every sensor 0 until 0.4 s,
 // then a steady 6 kPa with one sample of 12 kPa at 0.41125 s. A run that stops before
 // 0.55 s (a first impact alone, Makefile.scenes spheric2-slice) has no mean, spread or
