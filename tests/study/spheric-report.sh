@@ -9,7 +9,8 @@
 #   peak     the largest pressure and when, against the experiment's
 #   mean, sd the mean and standard deviation over 0.45-0.55 s, where the flow runs
 #            steadily up the face and a smooth solver reads a steady load; the mean
-#            against the experiment's over the same span
+#            against the experiment's over the same span (nan, with the noise, for a
+#            run that stops before 0.55 s: a first impact alone)
 #   noise    the RMS of the change from one sample to the next over the same span,
 #            over the mean: the acoustic noise (a steady load gives 0); the
 #            experiment's the same, from its record averaged over the run's sample
