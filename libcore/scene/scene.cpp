@@ -409,6 +409,33 @@ void read_fluid(Reader& top, Scene& s) {
   r.finish();
 }
 
+// motion = [[t, vx, vy, vz], ...]: the velocity of a static solid at times that do not
+// decrease, linear between them.
+void read_motion(Reader& r, Solid& solid) {
+  const toml::node* n = r.node("motion");
+  if (!n) return;
+  if (solid.body()) r.fail("motion", "only for a static solid (a dynamic or breakable one moves by its forces)");
+  const toml::array* rows = n->as_array();
+  if (!rows || rows->empty())
+    r.fail("motion", fmt::format("expected rows [t, vx, vy, vz] (s, m/s), found {}",
+                                 rows ? std::string("an empty array") : type_name(*n)));
+  for (std::size_t k = 0; k < rows->size(); ++k) {
+    const toml::array* row = rows->get(k)->as_array();
+    const std::string where = fmt::format("motion[{}]", k);
+    if (!row || row->size() != 4)
+      r.fail(where, fmt::format("expected [t, vx, vy, vz] (s, m/s), found {}",
+                                row ? fmt::format("{} values", row->size()) : type_name(*rows->get(k))));
+    double v[4];
+    for (std::size_t i = 0; i < 4; ++i) v[i] = r.to_number(*row->get(i), r.key_path(where) + fmt::format("[{}]", i));
+    if (v[0] < 0) r.fail(where, fmt::format("time {} s is before the start of the run", v[0]));
+    if (!solid.motion_times.empty() && v[0] < solid.motion_times.back())
+      r.fail(where, fmt::format("time {} s is before the row above's {} s (times must not decrease)", v[0],
+                                solid.motion_times.back()));
+    solid.motion_times.push_back(v[0]);
+    solid.motion_velocities.emplace_back(v[1], v[2], v[3]);
+  }
+}
+
 void read_solid(Reader& r, Scene& s) {
   Solid solid;
   const std::string given = r.string("particles", "");
@@ -454,6 +481,7 @@ void read_solid(Reader& r, Scene& s) {
     for (const char* key : {"density", "velocity", "angular_velocity"})
       if (r.has(key)) r.fail(key, "only for a dynamic or breakable solid (dynamic = true or breakable = true)");
   }
+  read_motion(r, solid);
   solid.friction = r.number("friction", solid.friction);
   non_negative(r, "friction", solid.friction);
   solid.restitution = r.number("restitution", solid.restitution);

@@ -95,8 +95,13 @@ struct Solid {
   double frc = 0.5;                // fracture resistance coefficient, in (0, 1]
   bool anchored = true;            // breakable: fixed until it breaks; then the fragments
                                    // touching what it stood on stay fixed
+  // A static solid moved along a prescribed path (`motion`): its velocity at these
+  // times, linear between them (rigid/motion.h); empty: it stays put.
+  std::vector<double> motion_times;
+  std::vector<Vec3d> motion_velocities;
   // A rigid body of the solver: dynamic or breakable.
   bool body() const { return dynamic || breakable; }
+  bool moving() const { return !motion_times.empty(); }
   // x_world = rotation * (scale * x_file) + translation
   Eigen::Quaterniond rotation() const;
   Vec3d to_world(const Vec3d& p) const;

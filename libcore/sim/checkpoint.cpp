@@ -1,6 +1,7 @@
 // Checkpoints (sim/checkpoint.h; the layout: docs/formats.md, kind "checkpoint").
 #include "sim/checkpoint.h"
 
+#include <algorithm>
 #include <csignal>
 #include <cstring>
 
@@ -226,6 +227,10 @@ void Solver::save_state(h5::Group& group) {
       write_vec3(b, "reference_normals", e.reference_normals);
       b.write<float>("flatness", e.flatness);
       b.write<float>("psi", e.psi);
+      if (e.moving()) {
+        b.set_attr<double>("motion_times", std::span<const double>(e.motion.times()));
+        write_vec3(b, "motion_velocities", e.motion.velocities());
+      }
     }
   }
 
@@ -353,6 +358,14 @@ void Solver::load_state(const h5::Group& group) {
       e.reference_normals = read_vec3(b, "reference_normals");
       e.flatness = read_exact<float>(b, "flatness", e.reference.size());
       e.psi = read_exact<float>(b, "psi", e.reference.size());
+      if (b.has_attr("motion_times")) {
+        std::vector<double> times = b.attr_array<double>("motion_times");
+        std::vector<Vec3d> velocities = read_vec3(b, "motion_velocities");
+        if (velocities.size() != times.size() || !std::is_sorted(times.begin(), times.end()))
+          fail_input("{}: motion: {} times (in order: {}) and {} velocities", b.where(), times.size(),
+                     std::is_sorted(times.begin(), times.end()) ? "yes" : "no", velocities.size());
+        e.motion = rigid::Motion(std::move(times), std::move(velocities));
+      }
       if (e.reference_normals.size() != e.reference.size())
         fail_input("{}: {} particles but {} normals", b.where(), e.reference.size(), e.reference_normals.size());
       e.info.particles = e.reference.size();

@@ -116,6 +116,7 @@ int Solver::Impl::add_body(const BodySpec& spec) {
   e.info.voxels = spec.voxels;
   e.info.created_time = t;
   e.info.fixed = spec.fixed;
+  e.motion = spec.motion;
   e.spacing = spec.spacing;
   e.friction = spec.friction;
   e.restitution = spec.restitution;
@@ -269,8 +270,9 @@ void Solver::Impl::upload_layout() {
 }
 
 // What contacts need of every owner: static solids have no mass (inv_mass 0), as do
-// fixed and retired bodies; a moving body's contact mass is its mass over the weight
-// of its contact pairs at the last step (at least 1).
+// fixed and retired bodies, and solids moved as told (they do not give way); a body
+// moved by its forces has as contact mass its mass over the weight of its contact
+// pairs at the last step (at least 1).
 void Solver::Impl::upload_owners() {
   RigidStage& r = *rigid;
   // The damping ratio of a restitution as the solver steps contacts (the solid's own
@@ -288,7 +290,7 @@ void Solver::Impl::upload_owners() {
   for (const SolidMaterial& m : r.materials)
     owners.push_back(owner_params(0, m.friction, damping(m.restitution), m.spacing));
   for (const BodyEntry& e : r.bodies) {
-    const bool moves = e.info.active && !e.info.fixed && !e.reference.empty();
+    const bool moves = e.info.active && !e.info.fixed && !e.moving() && !e.reference.empty();
     const double contact_mass = moves ? e.body.mass().mass / std::max(1.0, e.contact_weight) : 0.0;
     owners.push_back(owner_params(contact_mass, e.friction, damping(e.restitution), e.spacing));
   }
@@ -436,6 +438,18 @@ void Solver::Impl::step_bodies(double dt) {
   bool moved = false;
   for (BodyEntry& e : r.bodies) {
     if (!e.info.active || e.info.fixed) continue;
+    if (e.moving()) {
+      // Along its path, whatever its forces; what it does against them (the fluid's
+      // and its contacts' force on it) is energy put into the scene.
+      rigid::BodyState& st = e.body.state();
+      const Vec3d d = e.motion.displacement(t, t + dt);
+      emitted_energy -= e.force.dot(d);
+      st.position += d;
+      st.linear_velocity = e.motion.velocity(t + dt);
+      st.angular_velocity = Vec3d::Zero();
+      moved = moved || d != Vec3d::Zero();
+      continue;
+    }
     e.force += e.body.mass().mass * params.gravity;
     e.body.step(e.force, e.torque, dt);
     const rigid::BodyState& st = e.body.state();
@@ -451,7 +465,7 @@ void Solver::Impl::body_energies(double& kinetic, double& potential) const {
   kinetic = potential = 0;
   if (!rigid) return;
   for (const BodyEntry& e : rigid->bodies) {
-    if (!e.info.active) continue;
+    if (!e.info.active || e.moving()) continue;  // a moving solid's energy is not the scene's
     kinetic += e.body.kinetic_energy();
     potential -= e.body.mass().mass * params.gravity.dot(e.body.state().position - params.domain.min);
   }

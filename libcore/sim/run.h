@@ -48,12 +48,12 @@ struct RunSummary {
   int worst_density_frame = 0;
   double worst_density_time = 0;       // s
   double mean_density_error = 0;       // mean over frames of the frame means
-  // The total: kinetic + potential + elastic, less what the emitters put in, plus what
-  // left the domain (J).
+  // The total: kinetic + potential + elastic, less what the emitters and moving solids
+  // put in, plus what left the domain (J).
   double energy_start = 0, energy_end = 0;
   double energy_highest = 0;           // largest total over the frames (J)
   double energy_max_rise = 0;          // largest rise of the total between frames (J)
-  double emitted_energy = 0;           // what the emitters put in by the end (J)
+  double emitted_energy = 0;           // what emitters and moving solids put in by the end (J)
   double outflow_energy = 0;           // what left the domain by the end (J)
   std::int64_t fluid_end = 0, removed = 0, boundary = 0;
   // (energy_end - energy_start) / scale and (energy_highest - energy_start) / scale:

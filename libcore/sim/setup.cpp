@@ -208,7 +208,10 @@ void mark_anchors(Setup& out, const std::vector<BodyGeometry>& geometry) {
 
 std::string point_text(const Vec3d& q) { return fmt::format("({:.4g}, {:.4g}, {:.4g}) m", q.x(), q.y(), q.z()); }
 
-// A dynamic solid may not start inside the fluid or another solid (kOverlapFraction).
+const char* kind(const BodySetup& body) { return body.motion.empty() ? "dynamic" : "moving"; }
+
+// A dynamic or moving solid may not start inside the fluid or another solid
+// (kOverlapFraction).
 void check_overlaps(const scene::Scene& s, const Setup& out, const std::vector<BodyGeometry>& geometry) {
   const double fluid_gap = kOverlapFraction * s.spacing;
   for (const BodySetup& body : out.bodies) {
@@ -229,17 +232,17 @@ void check_overlaps(const scene::Scene& s, const Setup& out, const std::vector<B
       while (k >= block_end && block + 1 < out.block_particles.size()) block_end += out.block_particles[++block];
       const Vec3d q(fluid.x[k], fluid.y[k], fluid.z[k]);
       if (in_box(q) && (g.contains(q) || hash.near(q, fluid_gap)))
-        fail_input("{}: solid[{}]: the dynamic solid '{}' starts overlapping the fluid of fluid.block[{}] at {} (fluid "
+        fail_input("{}: solid[{}]: the {} solid '{}' starts overlapping the fluid of fluid.block[{}] at {} (fluid "
                    "rests one spacing from a solid's boundary particles)",
-                   s.path, i, body.name, block, point_text(q));
+                   s.path, i, kind(body), body.name, block, point_text(q));
     }
     for (std::size_t j = 0; j < geometry.size(); ++j) {
       if (j == i) continue;
       const double gap = kOverlapFraction * 0.5 * (g.spacing + geometry[j].spacing);
       for (const Vec3d& q : geometry[j].particles)
         if (in_box(q) && (g.contains(q) || hash.near(q, gap)))
-          fail_input("{}: solid[{}]: the dynamic solid '{}' starts overlapping solid[{}] ('{}') at {}", s.path, i,
-                     body.name, j, s.solids[j].name, point_text(q));
+          fail_input("{}: solid[{}]: the {} solid '{}' starts overlapping solid[{}] ('{}') at {}", s.path, i,
+                     kind(body), body.name, j, s.solids[j].name, point_text(q));
     }
   }
 }
@@ -631,6 +634,22 @@ Setup prepare(const scene::Scene& s, double end_time) {
       bset.per_solid.push_back(0);
       continue;
     }
+    if (solid.moving()) {  // a body that the solver moves as told, with all its particles
+      BodySetup body;
+      body.solid = i;
+      body.name = solid.name;
+      body.mass.mass = 1;
+      for (const Vec3d& x : g.particles) body.mass.center += x / static_cast<double>(g.particles.size());
+      body.mass.inertia = Mat3d::Identity();
+      body.particles = g.particles;
+      for (const Vec3d& n : normals) body.normals.push_back(q * n);
+      body.flatness = flatness;
+      body.motion = rigid::Motion(solid.motion_times, solid.motion_velocities);
+      body.velocity = body.motion.velocity(0);
+      out.bodies.push_back(std::move(body));
+      bset.per_solid.push_back(0);
+      continue;
+    }
     std::size_t kept = 0;
     for (std::size_t k = 0; k < positions.size(); ++k) {
       const Vec3d& world = g.particles[k];
@@ -669,6 +688,7 @@ Setup prepare(const scene::Scene& s, double end_time) {
     double radius = 0;
     for (const Vec3d& x : b.particles) radius = std::max(radius, (x - b.mass.center).norm());
     v_init = std::max(v_init, b.velocity.norm() + b.angular_velocity.norm() * radius);
+    v_init = std::max(v_init, b.motion.top_speed());
   }
   double fall = 0;
   const double g = p.gravity.norm();

@@ -286,6 +286,7 @@ Solver::Solver(const Setup& setup, compute::Context& context)
     spec.state.linear_velocity = b.velocity;
     spec.state.angular_velocity = b.angular_velocity;
     spec.fixed = b.breakable && b.anchored;
+    spec.motion = b.motion;
     body_of_setup.push_back(s.add_body(spec));
   }
   if (std::any_of(setup.bodies.begin(), setup.bodies.end(), [](const BodySetup& b) { return b.breakable; }))

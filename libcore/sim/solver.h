@@ -43,6 +43,7 @@
 #include "io/frame_file.h"
 #include "io/run_file.h"
 #include "rigid/body.h"
+#include "rigid/motion.h"
 #include "sim/sensors.h"
 #include "sim/setup.h"
 
@@ -67,7 +68,8 @@ struct FluidStats {
   std::int64_t fluid = 0;
   double body_kinetic = 0, body_potential = 0;  // J, of the active bodies (potential as the fluid's)
   // J the emitters have put in since the start: the kinetic and potential energy of
-  // the particles they made, and the work of holding them at their speed.
+  // the particles they made, and the work of holding them at their speed; and the
+  // work of the solids moved as told against the forces on them.
   double emitted = 0;
   // J carried out of the domain by the particles that left it since the start (their
   // kinetic and potential energy when they left).
@@ -91,6 +93,7 @@ struct BodySpec {
   double spacing = 0;               // sampling spacing of the particles (m)
   double friction = 0.5, restitution = 0.3;
   bool fixed = false;               // does not move (an anchored fragment)
+  rigid::Motion motion;             // non-empty: moves as told, whatever its forces (mass nominal)
   rigid::BodyState state;           // pose and velocities now
 };
 

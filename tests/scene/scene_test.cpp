@@ -297,6 +297,28 @@ TEST(SceneErrors, BreakableKeys) {
   expect_error(f, kMinimal + "[fracture]\nmax_chunks = 2.5\n", "fracture.max_chunks: 2.5 is not a whole number");
 }
 
+// motion = [[t, vx, vy, vz], ...]: a static solid's velocity at times that do not decrease.
+TEST(Scene, MovingSolidKeys) {
+  SceneFolder f;
+  const std::string solid = kMinimal + "[[solid]]\nparticles = \"wall.h5\"\n";
+  const Scene s = load_scene(f.write(solid + "motion = [[0, 0, 0, 4], [0.15, 0, 0, 4], [0.15, 0, 0, 0]]\n"));
+  const Solid& gate = s.solids.at(0);
+  EXPECT_TRUE(gate.moving() && !gate.body());
+  EXPECT_EQ(gate.motion_times, (std::vector<double>{0, 0.15, 0.15}));
+  ASSERT_EQ(gate.motion_velocities.size(), 3u);
+  EXPECT_EQ(gate.motion_velocities[1], Vec3d(0, 0, 4));
+  EXPECT_FALSE(load_scene(f.write(solid)).solids.at(0).moving());
+  expect_error(f, solid + "motion = [1, 0, 0, 4]\n", "solid[0].motion[0]: expected [t, vx, vy, vz] (s, m/s), found an integer");
+  expect_error(f, solid + "motion = []\n", "solid[0].motion: expected rows [t, vx, vy, vz] (s, m/s), found an empty array");
+  expect_error(f, solid + "motion = [[0, 0, 4]]\n", "solid[0].motion[0]: expected [t, vx, vy, vz] (s, m/s), found 3 values");
+  expect_error(f, solid + "motion = [[0, 0, 0, \"up\"]]\n", "solid[0].motion[0][3]: expected a number");
+  expect_error(f, solid + "motion = [[-1, 0, 0, 4]]\n", "solid[0].motion[0]: time -1 s is before the start of the run");
+  expect_error(f, solid + "motion = [[0.2, 0, 0, 4], [0.1, 0, 0, 0]]\n",
+               "solid[0].motion[1]: time 0.1 s is before the row above's 0.2 s (times must not decrease)");
+  expect_error(f, solid + "dynamic = true\ndensity = 500\nmotion = [[0, 0, 0, 4]]\n",
+               "solid[0].motion: only for a static solid");
+}
+
 TEST(SceneErrors, MissingAndMistypedValues) {
   SceneFolder f;
   expect_error(f, "[time]\nend = 1\n", "spacing: missing (required)");
