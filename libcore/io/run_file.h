@@ -16,11 +16,11 @@ namespace bw {
 struct SolidRecord {
   std::string name;
   std::string particles;          // absolute path of the particle file
-  std::string kind;               // "static", "dynamic" or "breakable"
+  std::string kind;               // "static", "moving", "dynamic" or "breakable"
   Vec3d translation = Vec3d::Zero();
   Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
   double scale = 1;
-  std::int32_t body = -1;         // body of a dynamic or breakable solid
+  std::int32_t body = -1;         // body of a moving, dynamic or breakable solid
 };
 
 struct BodyRecord {

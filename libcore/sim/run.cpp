@@ -224,7 +224,7 @@ RunSummary Simulation::run() {
     SolidRecord r;
     r.name = solid.name;
     r.particles = solid.particles;
-    r.kind = solid.breakable ? "breakable" : solid.dynamic ? "dynamic" : "static";
+    r.kind = solid.breakable ? "breakable" : solid.dynamic ? "dynamic" : solid.moving() ? "moving" : "static";
     for (int b = 0; b < solver.body_count(); ++b)
       if (solver.body_info(b).solid == static_cast<std::int32_t>(i) && solver.body_info(b).parent < 0) r.body = b;
     r.translation = solid.translation;
