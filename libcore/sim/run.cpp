@@ -589,8 +589,10 @@ std::string format_summary(const RunSummary& r) {
                         r.energy_max_rise)
           : std::string("never above it");
   std::string terms;  // what the total counts besides the fluid's and bodies' energy
-  if (r.emitted_energy != 0)
+  if (r.emitted_energy > 0)
     terms += fmt::format(", less the {:.6g} J put in by emitters and moving solids", r.emitted_energy);
+  else if (r.emitted_energy < 0)  // the fluid pushed a moving solid along its way
+    terms += fmt::format(", plus the {:.6g} J the fluid gave moving solids", -r.emitted_energy);
   if (r.outflow_energy != 0) terms += fmt::format(", with the {:.6g} J carried out of the domain", r.outflow_energy);
   out += fmt::format("  energy       {:.6g} J -> {:.6g} J{}: drift {:+.2f}% of the {}, {}\n", r.energy_start, r.energy_end,
                      terms, 100 * r.energy_drift(),
