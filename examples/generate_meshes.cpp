@@ -88,6 +88,10 @@ int main(int argc, char** argv) {
     // sides reaches them, at spacings down to 0.004 m. Its faces lie on cell planes at
     // 0.02, 0.01, 0.008, 0.005 and 0.004 m, as the slice's walls do.
     mesh::export_mesh(mesh::box({0.6645, 0, 0}, {0.8245, 0.04, 0.16}), dir + "/spheric_slice_box.obj");
+    // A gate across the slice, its face on the water's end (x = 1.992 m), 0.6 m high and
+    // 0.04 m thick, on cell planes at the same spacings (examples/spheric2-slice-gate.toml:
+    // the column released by lifting it).
+    mesh::export_mesh(mesh::box({1.952, 0, 0}, {1.992, 0.04, 0.6}), dir + "/spheric_slice_gate.obj");
     // A crate, 0.1 m cube, for the floating-body scene.
     mesh::export_mesh(mesh::box({0, 0, 0}, {0.1, 0.1, 0.1}), dir + "/crate.obj");
     // Scene 3: a valley 8 m long falling 0.12 m per metre along x, with parabolic

@@ -25,6 +25,7 @@
 
 #include <gtest/gtest.h>
 
+#include "io/frame_file.h"
 #include "test_support.h"
 
 namespace bw {
@@ -116,27 +117,45 @@ TEST(Spheric, TheReservoirDrainsAndTheFlowReachesTheGaugeAsMeasured) {
 // spheric2-slice): at each spacing its target may run, the slice's walls and the box's
 // faces lie on cell planes, so the column starts at rest density beside them and every
 // sensor's disc sits on the face; at 0.02 m the slice is two particles wide and its
-// face has no particle inside its edges, which bw-sim names. A few steps at each.
+// face has no particle inside its edges, which bw-sim names. The same with the gate of
+// examples/spheric2-slice-gate.toml (spheric2-gate) against the column, which rises as
+// its motion says. A few steps at each.
 TEST(Spheric, TheSliceStartsAtEachSpacingItsTargetRuns) {
   test::TempDir dir;
   for (const std::string s : {"0.01", "0.008", "0.005", "0.004", "0.02"}) {
     SCOPED_TRACE(s);
-    for (const auto& [mesh, file] : {std::pair{"spheric_slice", "tank"}, std::pair{"spheric_slice_box", "box"}}) {
+    for (const auto& [mesh, file] : {std::pair{"spheric_slice", "tank"}, std::pair{"spheric_slice_box", "box"},
+                                     std::pair{"spheric_slice_gate", "gate"}}) {
       const auto r = test::run(test::tool("bw-sample") + " " + kSource + "/examples/meshes/" + mesh + ".obj -o " +
                                dir.file(s + file + ".h5") + " --spacing " + s);
       ASSERT_EQ(r.exit_code, 0) << r.err;
     }
-    const auto sim = test::run(test::tool("bw-sim") + " " + kSource + "/examples/spheric2-slice-box.toml -o " +
-                               dir.file("run" + s) + " --quiet --set spacing=" + s + " --set 'solid[0].particles=" +
-                               dir.file(s + "tank.h5") + "' --set 'solid[1].particles=" + dir.file(s + "box.h5") +
-                               "' --set time.frame_rate=4000 --end-time 0.00025");
-    if (s == "0.02") {
-      EXPECT_EQ(sim.exit_code, 2);
-      EXPECT_NE(sim.err.find("sensor[0] 'P1'"), std::string::npos) << sim.err;
-      continue;
+    // The slice, and the slice with its gate (spheric2-gate) that rises as its
+    // motion says.
+    for (const std::string scene : {"box", "gate"}) {
+      SCOPED_TRACE(scene);
+      const std::string out = dir.file(scene + s);
+      const auto sim = test::run(
+          test::tool("bw-sim") + " " + kSource + "/examples/spheric2-slice-" + scene + ".toml -o " + out +
+          " --quiet --set spacing=" + s + " --set 'solid[0].particles=" + dir.file(s + "tank.h5") +
+          "' --set 'solid[1].particles=" + dir.file(s + "box.h5") + "'" +
+          (scene == "gate" ? " --set 'solid[2].particles=" + dir.file(s + "gate.h5") + "'" : std::string()) +
+          " --set time.frame_rate=4000 --end-time 0.00025");
+      if (s == "0.02") {
+        EXPECT_EQ(sim.exit_code, 2);
+        EXPECT_NE(sim.err.find("sensor[0] 'P1'"), std::string::npos) << sim.err;
+        continue;
+      }
+      ASSERT_EQ(sim.exit_code, 0) << sim.err;
+      EXPECT_TRUE(sim.err.empty()) << sim.err;
+      if (scene == "gate") {  // 4 m/s up from the start: 1 mm in the run's 0.25 ms
+        const FrameData f0 = read_frame(out + "/frames/000000.h5"), f1 = read_frame(out + "/frames/000001.h5");
+        ASSERT_EQ(f1.bodies.size(), 1u);
+        EXPECT_NEAR((f1.bodies.position[0] - f0.bodies.position[0]).norm(), 0.001, 1e-9);
+        EXPECT_NEAR(f1.bodies.position[0].z() - f0.bodies.position[0].z(), 0.001, 1e-9);
+        EXPECT_EQ(f1.bodies.linear_velocity[0], Vec3d(0, 0, 4));
+      }
     }
-    ASSERT_EQ(sim.exit_code, 0) << sim.err;
-    EXPECT_TRUE(sim.err.empty()) << sim.err;
   }
 }
 
