@@ -709,7 +709,8 @@ Setup prepare(const scene::Scene& s, double end_time) {
       }
     for (const scene::Emitter& e : s.emitters) highest = std::min(highest, down.dot(e.center));
     for (const BodySetup& b : out.bodies)
-      for (const Vec3d& x : b.particles) highest = std::min(highest, down.dot(x));
+      if (b.motion.empty())  // a moving solid goes where it is told, not down
+        for (const Vec3d& x : b.particles) highest = std::min(highest, down.dot(x));
     fall = std::max(0.0, lowest - highest);
   }
   p.scene_speed = std::sqrt(v_init * v_init + 2 * g * fall);
