@@ -1,7 +1,8 @@
 // Contacts between rigid bodies and static solids, without fluid (docs/scene.md,
 // "Physics"): a box dropped on a floor bounces with about its restitution and comes
 // to rest on it without passing through, a stack of three boxes stands, Coulomb
-// friction stops a sliding box after the distance v^2 / (2 mu g).
+// friction stops a sliding box after the distance v^2 / (2 mu g), a floor moved as told
+// lifts the box on it.
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -139,6 +140,36 @@ TEST(Contact, CoulombFrictionStopsASlidingBox) {
   EXPECT_NEAR(stop_time / (v0 / (mu * g)), 1.0, 0.1);
   EXPECT_LT(st.linear_velocity.norm(), 1e-3) << "it stays where it stopped";
   EXPECT_NEAR(st.position.z(), 0.5 * kBox, 0.05 * kSpacing) << "on the floor, not dug in";
+}
+
+// A floor moved as told (the tank with a `motion`) lifts the box resting on it: after
+// 0.2 s at rest the tank speeds up evenly to 0.1 m/s upward over 0.2 s and goes on. The
+// box rides along, as a body on a lift does: it rises with the floor, at its speed,
+// and the floor does not give way to it.
+TEST(Contact, AMovingFloorLiftsTheBoxOnIt) {
+  test::TempDir dir;
+  write_solids(dir);
+  std::ofstream(dir.file("lift.toml")) << dry_scene(box({0.1, 0.1, 0}, 500), 1.0,
+                                                    "motion = [[0.2, 0, 0, 0], [0.4, 0, 0, 0.1]]\n");
+  sim::Solver solver(test::prepare_file(dir.file("lift.toml")), test::shared_context());
+  ASSERT_EQ(solver.body_count(), 2);  // the tank, moved, and the box
+  const int tank = solver.body_info(0).name == "box" ? 1 : 0, crate = 1 - tank;
+  while (solver.time() < 0.2) solver.step(0.2);
+  const Vec3d tank0 = solver.body(tank).state().position, box0 = solver.body(crate).state().position;
+  while (solver.time() < 1.0) solver.step(1.0);
+  const rigid::BodyState& t = solver.body(tank).state();
+  const rigid::BodyState& b = solver.body(crate).state();
+  const double lifted = t.position.z() - tank0.z(), rode = b.position.z() - box0.z();
+  test::figure("floor lifted", lifted, "m");
+  test::figure("box lifted", rode, "m");
+  test::figure("box's vertical speed at the end", b.linear_velocity.z(), "m/s");
+  // 0.2 s at the mean of 0 and 0.1 m/s, then 0.6 s at 0.1.
+  EXPECT_NEAR(lifted, 0.5 * 0.2 * 0.1 + 0.6 * 0.1, 1e-9);
+  // The contact's spring sits g / omega^2 deep at rest and (g + a) / omega^2 while the
+  // floor speeds up: what the box lags the floor by is a small part of a spacing.
+  EXPECT_NEAR(rode, lifted, 0.05 * kSpacing);
+  EXPECT_NEAR(b.linear_velocity.z(), 0.1, 0.01);
+  EXPECT_LT(std::hypot(b.position.x() - box0.x(), b.position.y() - box0.y()), 1e-4) << "straight up";
 }
 
 }  // namespace
