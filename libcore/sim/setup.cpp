@@ -601,51 +601,43 @@ Setup prepare(const scene::Scene& s, double end_time) {
     BodyGeometry& g = geometry[i];
     g.spacing = effective;
     for (std::size_t k = 0; k < positions.size(); ++k) g.particles.push_back(q * (solid.scale * positions[k]) + solid.translation);
-    if (solid.body()) {
-      if (!sampled.has_voxels || sampled.voxels.empty())
-        fail_input("{}: solid[{}].particles: {} has no voxels; a {} solid needs its volume (sample it with "
-                   "bw-sample --volume)",
-                   s.path, i, solid.particles_given, solid.breakable ? "breakable" : "dynamic");
+    if (solid.body() || solid.moving()) {  // a body: all its particles (they move)
       BodySetup body;
       body.solid = i;
       body.name = solid.name;
-      std::vector<Vec3d> centers;
-      centers.reserve(sampled.voxels.size());
-      for (const Vec3d& c : sampled.voxel_positions()) centers.push_back(q * (solid.scale * c) + solid.translation);
-      body.mass = rigid::voxel_mass_properties(centers, effective, solid.density);
-      body.voxels = static_cast<std::int32_t>(sampled.voxels.size());
       body.particles = g.particles;
       for (const Vec3d& n : normals) body.normals.push_back(q * n);
       body.flatness = flatness;
-      body.velocity = solid.velocity;
-      body.angular_velocity = solid.angular_velocity;
-      if (solid.breakable) {
-        body.breakable = true;
-        body.anchored = solid.anchored;
-        body.frc = solid.frc;
-        body.density = solid.density;
-        body.voxel_size = effective;
-        body.voxel_cells = sampled.voxels;
-        body.particle_cells = sampled.surface;
-        body.voxel_centers = centers;
+      if (solid.moving()) {  // moved as told: its mass is nominal, nothing reads it
+        body.mass.mass = 1;
+        for (const Vec3d& x : g.particles) body.mass.center += x / static_cast<double>(g.particles.size());
+        body.mass.inertia = Mat3d::Identity();
+        body.motion = rigid::Motion(solid.motion_times, solid.motion_velocities);
+        body.velocity = body.motion.velocity(0);
+      } else {
+        if (!sampled.has_voxels || sampled.voxels.empty())
+          fail_input("{}: solid[{}].particles: {} has no voxels; a {} solid needs its volume (sample it with "
+                     "bw-sample --volume)",
+                     s.path, i, solid.particles_given, solid.breakable ? "breakable" : "dynamic");
+        std::vector<Vec3d> centers;
+        centers.reserve(sampled.voxels.size());
+        for (const Vec3d& c : sampled.voxel_positions()) centers.push_back(q * (solid.scale * c) + solid.translation);
+        body.mass = rigid::voxel_mass_properties(centers, effective, solid.density);
+        body.voxels = static_cast<std::int32_t>(sampled.voxels.size());
+        body.velocity = solid.velocity;
+        body.angular_velocity = solid.angular_velocity;
+        if (solid.breakable) {
+          body.breakable = true;
+          body.anchored = solid.anchored;
+          body.frc = solid.frc;
+          body.density = solid.density;
+          body.voxel_size = effective;
+          body.voxel_cells = sampled.voxels;
+          body.particle_cells = sampled.surface;
+          body.voxel_centers = centers;
+        }
+        g.set_interior(sampled, solid);
       }
-      g.set_interior(sampled, solid);
-      out.bodies.push_back(std::move(body));
-      bset.per_solid.push_back(0);
-      continue;
-    }
-    if (solid.moving()) {  // a body that the solver moves as told, with all its particles
-      BodySetup body;
-      body.solid = i;
-      body.name = solid.name;
-      body.mass.mass = 1;
-      for (const Vec3d& x : g.particles) body.mass.center += x / static_cast<double>(g.particles.size());
-      body.mass.inertia = Mat3d::Identity();
-      body.particles = g.particles;
-      for (const Vec3d& n : normals) body.normals.push_back(q * n);
-      body.flatness = flatness;
-      body.motion = rigid::Motion(solid.motion_times, solid.motion_velocities);
-      body.velocity = body.motion.velocity(0);
       out.bodies.push_back(std::move(body));
       bset.per_solid.push_back(0);
       continue;
