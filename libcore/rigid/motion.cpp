@@ -46,4 +46,30 @@ double Motion::top_speed() const {
   return top;
 }
 
+Vec3d PrescribedMotion::advance(double t, double dt, Vec3d& point, Eigen::Quaterniond& orientation) {
+  const Vec3d moved = translation.displacement(t, t + dt);
+  const Vec3d turned = turn.displacement(t, t + dt);
+  const double angle = turned.norm();
+  const Vec3d arm = point - pivot;
+  pivot += moved;
+  if (angle > 0) {
+    const Eigen::Quaterniond q(Eigen::AngleAxisd(angle, turned / angle));
+    point = pivot + q * arm;
+    orientation = (q * orientation).normalized();
+  } else {
+    point += moved;
+  }
+  return turned;
+}
+
+Vec3d PrescribedMotion::velocity(const Vec3d& x, double t) const {
+  return translation.velocity(t) + turn.velocity(t).cross(x - pivot);
+}
+
+double PrescribedMotion::top_speed(const std::vector<Vec3d>& points) const {
+  double reach = 0;
+  for (const Vec3d& x : points) reach = std::max(reach, (x - pivot).norm());
+  return translation.top_speed() + turn.top_speed() * reach;
+}
+
 }  // namespace bw::rigid
