@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <toml++/toml.h>
 
 #include "common/error.h"
@@ -409,31 +410,105 @@ void read_fluid(Reader& top, Scene& s) {
   r.finish();
 }
 
-// motion = [[t, vx, vy, vz], ...]: the velocity of a static solid at times that do not
-// decrease, linear between them.
-void read_motion(Reader& r, Solid& solid) {
-  const toml::node* n = r.node("motion");
-  if (!n) return;
-  if (solid.body()) r.fail("motion", "only for a static solid (a dynamic or breakable one moves by its forces)");
-  const toml::array* rows = n->as_array();
-  if (!rows || rows->empty())
-    r.fail("motion", fmt::format("expected rows [t, vx, vy, vz] (s, m/s), found {}",
-                                 rows ? std::string("an empty array") : type_name(*n)));
-  for (std::size_t k = 0; k < rows->size(); ++k) {
-    const toml::array* row = rows->get(k)->as_array();
-    const std::string where = fmt::format("motion[{}]", k);
-    if (!row || row->size() != 4)
-      r.fail(where, fmt::format("expected [t, vx, vy, vz] (s, m/s), found {}",
-                                row ? fmt::format("{} values", row->size()) : type_name(*rows->get(k))));
-    double v[4];
-    for (std::size_t i = 0; i < 4; ++i) v[i] = r.to_number(*row->get(i), r.key_path(where) + fmt::format("[{}]", i));
-    if (v[0] < 0) r.fail(where, fmt::format("time {} s is before the start of the run", v[0]));
-    if (!solid.motion_times.empty() && v[0] < solid.motion_times.back())
-      r.fail(where, fmt::format("time {} s is before the row above's {} s (times must not decrease)", v[0],
-                                solid.motion_times.back()));
-    solid.motion_times.push_back(v[0]);
-    solid.motion_velocities.emplace_back(v[1], v[2], v[3]);
+// Keys of a moving solid: rows of `columns` numbers, the first a time, in the scene
+// ([[t, ...], ...]) or in a text file named there (one key a line, numbers separated
+// by commas or spaces, `#` comments, a first line of column names skipped). Times
+// start at 0 or later and do not decrease.
+std::vector<std::vector<double>> read_keys(Reader& r, const Scene& s, std::string_view key,
+                                           const std::vector<std::string_view>& columns, std::string_view units) {
+  const toml::node* n = r.node(key);
+  std::vector<std::vector<double>> rows;
+  if (!n) return rows;
+  const std::string shape = fmt::format("[{}] ({})", fmt::join(columns, ", "), units);
+  // Checks a key's time against the one before; `where` names the key.
+  auto check_time = [&](const std::string& where, double t) {
+    if (t < 0) r.fail(where, fmt::format("time {} s is before the start of the run", t));
+    if (!rows.empty() && t < rows.back()[0])
+      r.fail(where, fmt::format("time {} s is before the key above's {} s (times must not decrease)", t, rows.back()[0]));
+  };
+  if (const auto* given = n->as_string()) {
+    fs::path p(given->get());
+    if (p.is_relative()) p = fs::path(s.folder) / p;
+    std::ifstream in(p);
+    if (!in) r.fail(key, fmt::format("{}: {}", given->get(), fs::exists(p) ? "cannot be read" : "no such file"));
+    std::string line;
+    bool first = true;  // the first line that is not blank or a comment may name the columns
+    for (int number = 1; std::getline(in, line); ++number) {
+      if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+      std::replace(line.begin(), line.end(), ',', ' ');
+      std::istringstream fields(line);
+      std::vector<std::string> words;
+      for (std::string w; fields >> w;) words.push_back(w);
+      if (words.empty()) continue;
+      const std::string where = fmt::format("{} ({} line {})", key, given->get(), number);
+      std::vector<double> row;
+      for (const std::string& w : words) {
+        char* end = nullptr;
+        const double v = std::strtod(w.c_str(), &end);
+        if (end != w.c_str() + w.size() || !std::isfinite(v)) {
+          if (first && row.empty()) break;  // column names
+          r.fail(where, fmt::format("'{}' is not a number; expected {}", w, shape));
+        }
+        row.push_back(v);
+      }
+      first = false;
+      if (row.empty()) continue;
+      if (row.size() != columns.size())
+        r.fail(where, fmt::format("expected {}, found {} values", shape, row.size()));
+      check_time(where, row[0]);
+      rows.push_back(std::move(row));
+    }
+    if (rows.empty()) r.fail(key, fmt::format("{} holds no keys; expected lines {}", given->get(), shape));
+    return rows;
   }
+  const toml::array* list = n->as_array();
+  if (!list || list->empty())
+    r.fail(key, fmt::format("expected rows {} or the name of a file of them, found {}", shape,
+                            list ? std::string("an empty array") : type_name(*n)));
+  for (std::size_t k = 0; k < list->size(); ++k) {
+    const toml::array* row = list->get(k)->as_array();
+    const std::string where = fmt::format("{}[{}]", key, k);
+    if (!row || row->size() != columns.size())
+      r.fail(where, fmt::format("expected {}, found {}", shape,
+                                row ? fmt::format("{} values", row->size()) : type_name(*list->get(k))));
+    std::vector<double> v;
+    for (std::size_t i = 0; i < columns.size(); ++i)
+      v.push_back(r.to_number(*row->get(i), r.key_path(where) + fmt::format("[{}]", i)));
+    check_time(where, v[0]);
+    rows.push_back(std::move(v));
+  }
+  return rows;
+}
+
+// A static solid moved as told: `motion` (its velocity) and `angular_motion` (its
+// angular velocity about `axis` through `pivot`).
+void read_motion(Reader& r, const Scene& s, Solid& solid) {
+  for (const auto& [key, columns, units] :
+       {std::tuple{"motion", std::vector<std::string_view>{"t", "vx", "vy", "vz"}, "s, m/s"},
+        std::tuple{"angular_motion", std::vector<std::string_view>{"t", "omega"}, "s, rad/s"}}) {
+    if (r.has(key) && solid.body())
+      r.fail(key, "only for a static solid (a dynamic or breakable one moves by its forces)");
+    for (const std::vector<double>& row : read_keys(r, s, key, columns, units)) {
+      if (columns.size() == 4) {
+        solid.motion_times.push_back(row[0]);
+        solid.motion_velocities.emplace_back(row[1], row[2], row[3]);
+      } else {
+        solid.angular_times.push_back(row[0]);
+        solid.angular_rates.push_back(row[1]);
+      }
+    }
+  }
+  if (solid.angular_times.empty()) {
+    for (const char* key : {"axis", "pivot"})
+      if (r.has(key)) r.fail(key, "only with angular_motion (the solid's turn about this axis)");
+    return;
+  }
+  if (!r.has("axis")) r.fail("axis", "missing (required with angular_motion: the direction it turns about)");
+  if (!r.has("pivot")) r.fail("pivot", "missing (required with angular_motion: a point of the axis, m)");
+  const Vec3d axis = r.vec3("axis", solid.axis);
+  if (!(axis.norm() > 0)) r.fail("axis", "[0, 0, 0] has no direction");
+  solid.axis = axis.normalized();
+  solid.pivot = r.vec3("pivot", solid.pivot);
 }
 
 void read_solid(Reader& r, Scene& s) {
@@ -481,7 +556,7 @@ void read_solid(Reader& r, Scene& s) {
     for (const char* key : {"density", "velocity", "angular_velocity"})
       if (r.has(key)) r.fail(key, "only for a dynamic or breakable solid (dynamic = true or breakable = true)");
   }
-  read_motion(r, solid);
+  read_motion(r, s, solid);
   solid.friction = r.number("friction", solid.friction);
   non_negative(r, "friction", solid.friction);
   solid.restitution = r.number("restitution", solid.restitution);

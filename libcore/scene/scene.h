@@ -95,13 +95,20 @@ struct Solid {
   double frc = 0.5;                // fracture resistance coefficient, in (0, 1]
   bool anchored = true;            // breakable: fixed until it breaks; then the fragments
                                    // touching what it stood on stay fixed
-  // A static solid moved along a prescribed path (`motion`): its velocity at these
-  // times, linear between them (rigid/motion.h); empty: it stays put.
+  // A static solid moved as told (docs/scene.md, "Moving solids"). `motion`: the
+  // velocity of its points (of the pivot when it also turns) at these times, linear
+  // between them (rigid/motion.h); empty: it does not translate.
   std::vector<double> motion_times;
   std::vector<Vec3d> motion_velocities;
+  // `angular_motion`: its angular velocity (rad/s) about `axis` through `pivot` at
+  // these times, linear between them; empty: it does not turn.
+  std::vector<double> angular_times;
+  std::vector<double> angular_rates;
+  Vec3d axis = Vec3d::UnitY();      // unit, right-hand rule
+  Vec3d pivot = Vec3d::Zero();      // a point of the axis at t = 0 (world, m)
   // A rigid body of the solver: dynamic or breakable.
   bool body() const { return dynamic || breakable; }
-  bool moving() const { return !motion_times.empty(); }
+  bool moving() const { return !motion_times.empty() || !angular_times.empty(); }
   // x_world = rotation * (scale * x_file) + translation
   Eigen::Quaterniond rotation() const;
   Vec3d to_world(const Vec3d& p) const;

@@ -227,10 +227,13 @@ void Solver::save_state(h5::Group& group) {
       write_vec3(b, "reference_normals", e.reference_normals);
       b.write<float>("flatness", e.flatness);
       b.write<float>("psi", e.psi);
-      if (e.moving()) {
-        b.set_attr<double>("motion_times", std::span<const double>(e.motion.times()));
-        write_vec3(b, "motion_velocities", e.motion.velocities());
-      }
+      // A solid moved as told: its keys (each part it has) and where its pivot is.
+      for (const auto& [part, keys] : {std::pair{"motion", &e.motion.translation}, std::pair{"turn", &e.motion.turn}})
+        if (!keys->empty()) {
+          b.set_attr<double>(fmt::format("{}_times", part), std::span<const double>(keys->times()));
+          write_vec3(b, fmt::format("{}_velocities", part).c_str(), keys->velocities());
+        }
+      if (e.moving()) set_vec3(b, "pivot", e.motion.pivot);
     }
   }
 
@@ -358,14 +361,17 @@ void Solver::load_state(const h5::Group& group) {
       e.reference_normals = read_vec3(b, "reference_normals");
       e.flatness = read_exact<float>(b, "flatness", e.reference.size());
       e.psi = read_exact<float>(b, "psi", e.reference.size());
-      if (b.has_attr("motion_times")) {
-        std::vector<double> times = b.attr_array<double>("motion_times");
-        std::vector<Vec3d> velocities = read_vec3(b, "motion_velocities");
+      for (const auto& [part, keys] : {std::pair{"motion", &e.motion.translation}, std::pair{"turn", &e.motion.turn}}) {
+        const std::string times_name = fmt::format("{}_times", part);
+        if (!b.has_attr(times_name)) continue;
+        std::vector<double> times = b.attr_array<double>(times_name);
+        std::vector<Vec3d> velocities = read_vec3(b, fmt::format("{}_velocities", part).c_str());
         if (velocities.size() != times.size() || !std::is_sorted(times.begin(), times.end()))
-          fail_input("{}: motion: {} times (in order: {}) and {} velocities", b.where(), times.size(),
+          fail_input("{}: {}: {} times (in order: {}) and {} velocities", b.where(), part, times.size(),
                      std::is_sorted(times.begin(), times.end()) ? "yes" : "no", velocities.size());
-        e.motion = rigid::Motion(std::move(times), std::move(velocities));
+        *keys = rigid::Motion(std::move(times), std::move(velocities));
       }
+      if (e.moving()) e.motion.pivot = get_vec3(b, "pivot");
       if (e.reference_normals.size() != e.reference.size())
         fail_input("{}: {} particles but {} normals", b.where(), e.reference.size(), e.reference_normals.size());
       e.info.particles = e.reference.size();

@@ -442,12 +442,12 @@ void Solver::Impl::step_bodies(double dt) {
       // Along its path, whatever its forces; what it does against them (the fluid's
       // and its contacts' force on it) is energy put into the scene.
       rigid::BodyState& st = e.body.state();
-      const Vec3d d = e.motion.displacement(t, t + dt);
-      emitted_energy -= e.force.dot(d);
-      st.position += d;
-      st.linear_velocity = e.motion.velocity(t + dt);
-      st.angular_velocity = Vec3d::Zero();
-      moved = moved || d != Vec3d::Zero();
+      const Vec3d before = st.position;
+      const Vec3d turned = e.motion.advance(t, dt, st.position, st.orientation);
+      emitted_energy -= e.force.dot(st.position - before) + e.torque.dot(turned);
+      st.linear_velocity = e.motion.velocity(st.position, t + dt);
+      st.angular_velocity = e.motion.angular_velocity(t + dt);
+      moved = moved || st.position != before || turned != Vec3d::Zero();
       continue;
     }
     e.force += e.body.mass().mass * params.gravity;

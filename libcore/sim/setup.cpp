@@ -612,8 +612,13 @@ Setup prepare(const scene::Scene& s, double end_time) {
         body.mass.mass = 1;
         for (const Vec3d& x : g.particles) body.mass.center += x / static_cast<double>(g.particles.size());
         body.mass.inertia = Mat3d::Identity();
-        body.motion = rigid::Motion(solid.motion_times, solid.motion_velocities);
-        body.velocity = body.motion.velocity(0);
+        body.motion.translation = rigid::Motion(solid.motion_times, solid.motion_velocities);
+        std::vector<Vec3d> turn;
+        for (double rate : solid.angular_rates) turn.push_back(rate * solid.axis);
+        body.motion.turn = rigid::Motion(solid.angular_times, std::move(turn));
+        body.motion.pivot = solid.pivot;
+        body.velocity = body.motion.velocity(body.mass.center, 0);
+        body.angular_velocity = body.motion.angular_velocity(0);
       } else {
         if (!sampled.has_voxels || sampled.voxels.empty())
           fail_input("{}: solid[{}].particles: {} has no voxels; a {} solid needs its volume (sample it with "
@@ -680,7 +685,7 @@ Setup prepare(const scene::Scene& s, double end_time) {
     double radius = 0;
     for (const Vec3d& x : b.particles) radius = std::max(radius, (x - b.mass.center).norm());
     v_init = std::max(v_init, b.velocity.norm() + b.angular_velocity.norm() * radius);
-    v_init = std::max(v_init, b.motion.top_speed());
+    v_init = std::max(v_init, b.motion.top_speed(b.particles));
   }
   double fall = 0;
   const double g = p.gravity.norm();

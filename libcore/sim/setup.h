@@ -147,9 +147,9 @@ struct BodySetup {
   std::vector<double> flatness; // of the surface there (surface_normals)
   Vec3d velocity = Vec3d::Zero();          // of the centre of mass (m/s)
   Vec3d angular_velocity = Vec3d::Zero();  // world frame (rad/s)
-  // A static solid with a `motion`: it moves as told, whatever the forces on it (its
-  // mass is nominal: nothing reads it).
-  rigid::Motion motion;
+  // A static solid with a `motion` or an `angular_motion`: it moves as told, whatever
+  // the forces on it (its mass is nominal: nothing reads it).
+  rigid::PrescribedMotion motion;
   // Breakable solids (method.md 3 and 4): its voxels (cells of the file's grid and
   // their centres in the reference configuration), the cell of each boundary
   // particle, and which voxels touch another solid at t = 0 (its anchor).

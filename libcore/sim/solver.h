@@ -93,7 +93,7 @@ struct BodySpec {
   double spacing = 0;               // sampling spacing of the particles (m)
   double friction = 0.5, restitution = 0.3;
   bool fixed = false;               // does not move (an anchored fragment)
-  rigid::Motion motion;             // non-empty: moves as told, whatever its forces (mass nominal)
+  rigid::PrescribedMotion motion;  // non-empty: moves as told, whatever its forces (mass nominal)
   rigid::BodyState state;           // pose and velocities now
 };
 

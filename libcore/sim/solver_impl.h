@@ -75,7 +75,7 @@ struct BodyEntry {
   double radius = 0;                     // farthest particle from the centre of mass (m)
   std::uint32_t first = 0;               // master index of its first particle
   double contact_weight = 0;             // weight of its contact pairs at the last step
-  rigid::Motion motion;                  // non-empty: a solid moved as told (BodySpec::motion)
+  rigid::PrescribedMotion motion;        // non-empty: a solid moved as told (BodySpec::motion)
   bool moving() const { return !motion.empty(); }
   Vec3d force = Vec3d::Zero(), torque = Vec3d::Zero();  // of the last step, gravity included
 };

@@ -191,6 +191,26 @@ TEST(Checkpoint, ResumedRunIsBitIdenticalWithAMovingSolid) {
   EXPECT_GT(reference.frames.back().emitted_energy, 0.0) << "the paddle's work on the water";
 }
 
+// The same paddle hinged at its foot and swung toward the water while it slides: the
+// pivot that its slide carries and the turn go through the checkpoint, bit for bit.
+TEST(Checkpoint, ResumedRunIsBitIdenticalWithATurningSolid) {
+  Fixture fx;
+  std::ofstream(fx.dir.file("turning.toml"))
+      << test::fracture_scene(0.0, 0.45, kEnd,
+                              "[[solid]]\nname = \"paddle\"\nparticles = \"wall.h5\"\ntranslation = [0.02, 0.02, 0]\n"
+                              "motion = [[0, 0.5, 0, 0], [0.03, 0.5, 0, 0], [0.03, 0, 0, 0]]\n"
+                              "angular_motion = [[0, 0], [0.02, 3], [0.04, 0]]\naxis = [0, 1, 0]\npivot = [0.05, 0.17, 0]\n");
+  fx.scene = scene::load_scene(fx.dir.file("turning.toml"));
+  fx.run("whole");
+  const RunRecord reference = read_run(fx.dir.file("whole/run.h5"));
+  fx.run("parts", 1);  // at 0.01 s, the paddle sliding and turning
+  fx.run("parts", -1, true);
+  expect_same_frames(fx.dir.file("whole"), fx.dir.file("parts"), 6);
+  expect_same_run(reference, read_run(fx.dir.file("parts/run.h5")));
+  ASSERT_FALSE(reference.frames.empty());
+  EXPECT_GT(reference.frames.back().emitted_energy, 0.0) << "the paddle's work on the water";
+}
+
 // One InputError line containing `what`.
 void expect_refused(const std::function<void()>& f, const std::string& what) {
   try {

@@ -309,14 +309,60 @@ TEST(Scene, MovingSolidKeys) {
   EXPECT_EQ(gate.motion_velocities[1], Vec3d(0, 0, 4));
   EXPECT_FALSE(load_scene(f.write(solid)).solids.at(0).moving());
   expect_error(f, solid + "motion = [1, 0, 0, 4]\n", "solid[0].motion[0]: expected [t, vx, vy, vz] (s, m/s), found an integer");
-  expect_error(f, solid + "motion = []\n", "solid[0].motion: expected rows [t, vx, vy, vz] (s, m/s), found an empty array");
+  expect_error(f, solid + "motion = []\n",
+               "solid[0].motion: expected rows [t, vx, vy, vz] (s, m/s) or the name of a file of them, found an empty array");
   expect_error(f, solid + "motion = [[0, 0, 4]]\n", "solid[0].motion[0]: expected [t, vx, vy, vz] (s, m/s), found 3 values");
   expect_error(f, solid + "motion = [[0, 0, 0, \"up\"]]\n", "solid[0].motion[0][3]: expected a number");
   expect_error(f, solid + "motion = [[-1, 0, 0, 4]]\n", "solid[0].motion[0]: time -1 s is before the start of the run");
   expect_error(f, solid + "motion = [[0.2, 0, 0, 4], [0.1, 0, 0, 0]]\n",
-               "solid[0].motion[1]: time 0.1 s is before the row above's 0.2 s (times must not decrease)");
+               "solid[0].motion[1]: time 0.1 s is before the key above's 0.2 s (times must not decrease)");
   expect_error(f, solid + "dynamic = true\ndensity = 500\nmotion = [[0, 0, 0, 4]]\n",
                "solid[0].motion: only for a static solid");
+}
+
+// The same keys from a file: one a line, commas or spaces, comments, a header line.
+TEST(Scene, MovingSolidKeysFromAFile) {
+  SceneFolder f;
+  const std::string solid = kMinimal + "[[solid]]\nparticles = \"wall.h5\"\n";
+  f.write("# a piston\nt, vx, vy, vz\n0, 0, 0, 0\n\n0.5 0.2 0 0  # at speed\n1.0,0.2,0,0\n", "piston.csv");
+  const Solid piston = load_scene(f.write(solid + "motion = \"piston.csv\"\n")).solids.at(0);
+  EXPECT_EQ(piston.motion_times, (std::vector<double>{0, 0.5, 1.0}));
+  ASSERT_EQ(piston.motion_velocities.size(), 3u);
+  EXPECT_EQ(piston.motion_velocities[1], Vec3d(0.2, 0, 0));
+  f.write("t omega\n0 0\n1 0.5\n", "flap.csv");
+  const Solid flap =
+      load_scene(f.write(solid + "angular_motion = \"flap.csv\"\naxis = [0, -2, 0]\npivot = [1, 0, 0]\n")).solids.at(0);
+  EXPECT_TRUE(flap.moving() && flap.motion_times.empty());
+  EXPECT_EQ(flap.angular_times, (std::vector<double>{0, 1}));
+  EXPECT_EQ(flap.angular_rates, (std::vector<double>{0, 0.5}));
+  EXPECT_EQ(flap.axis, Vec3d(0, -1, 0));
+  EXPECT_EQ(flap.pivot, Vec3d(1, 0, 0));
+  EXPECT_EQ(load_scene(f.write(solid + "angular_motion = [[0, 1]]\naxis = [0, 0, 1]\npivot = [0, 0, 0]\n"))
+                .solids.at(0).angular_rates,
+            (std::vector<double>{1}));
+
+  expect_error(f, solid + "motion = \"none.csv\"\n", "solid[0].motion: none.csv: no such file");
+  f.write("# nothing\n\n", "empty.csv");
+  expect_error(f, solid + "motion = \"empty.csv\"\n",
+               "solid[0].motion: empty.csv holds no keys; expected lines [t, vx, vy, vz] (s, m/s)");
+  f.write("t vx vy vz\n0 0 0 0\n0.5 0.2 0\n", "short.csv");
+  expect_error(f, solid + "motion = \"short.csv\"\n",
+               "solid[0].motion (short.csv line 3): expected [t, vx, vy, vz] (s, m/s), found 3 values");
+  f.write("0 0 0 0\n0.5 fast 0 0\n", "word.csv");
+  expect_error(f, solid + "motion = \"word.csv\"\n",
+               "solid[0].motion (word.csv line 2): 'fast' is not a number; expected [t, vx, vy, vz] (s, m/s)");
+  f.write("0 0\n0.5 1\n0.4 0\n", "back.csv");
+  expect_error(f, solid + "angular_motion = \"back.csv\"\naxis = [0, 1, 0]\npivot = [0, 0, 0]\n",
+               "solid[0].angular_motion (back.csv line 3): time 0.4 s is before the key above's 0.5 s");
+  expect_error(f, solid + "angular_motion = [[0, 1, 0]]\naxis = [0, 1, 0]\npivot = [0, 0, 0]\n",
+               "solid[0].angular_motion[0]: expected [t, omega] (s, rad/s), found 3 values");
+  expect_error(f, solid + "angular_motion = [[0, 1]]\npivot = [0, 0, 0]\n", "solid[0].axis: missing (required with angular_motion");
+  expect_error(f, solid + "angular_motion = [[0, 1]]\naxis = [0, 1, 0]\n", "solid[0].pivot: missing (required with angular_motion");
+  expect_error(f, solid + "angular_motion = [[0, 1]]\naxis = [0, 0, 0]\npivot = [0, 0, 0]\n",
+               "solid[0].axis: [0, 0, 0] has no direction");
+  expect_error(f, solid + "axis = [0, 1, 0]\n", "solid[0].axis: only with angular_motion");
+  expect_error(f, solid + "dynamic = true\ndensity = 500\nangular_motion = [[0, 1]]\n",
+               "solid[0].angular_motion: only for a static solid");
 }
 
 TEST(SceneErrors, MissingAndMistypedValues) {
