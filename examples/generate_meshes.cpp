@@ -92,6 +92,17 @@ int main(int argc, char** argv) {
     // 0.04 m thick, on cell planes at the same spacings (examples/spheric2-slice-gate.toml:
     // the column released by lifting it).
     mesh::export_mesh(mesh::box({1.952, 0, 0}, {1.992, 0.04, 0.6}), dir + "/spheric_slice_gate.obj");
+    // A wave flume (examples/wavemaker-piston.toml, wavemaker-flap.toml): cavity 8 m long,
+    // 0.08 m wide (4 particles at 0.02 m, 8 at 0.01 m), 0.8 m high, open at the top, walls
+    // 8 cm thick, so that their outer faces' particles lie more than h outside a domain
+    // drawn tight around the cavity and are dropped; and its wave maker's paddle, a plate
+    // 0.04 m thick across the whole width and as high as the flume, its back face 0.06 m
+    // from the end wall (room for the piston's back stroke) and its wet face at x = 0.1 m.
+    // Every face lies on a cell plane of bw-sample's grid at 0.04, 0.02, 0.01 and 0.005 m,
+    // so the water fills the flume from the paddle's face to the far wall and the paddle
+    // touches the floor and the side walls without overlapping them.
+    mesh::export_mesh(mesh::open_box({0, 0, 0}, {8.0, 0.08, 0.8}, 0.08), dir + "/wave_flume.obj");
+    mesh::export_mesh(mesh::box({0.06, 0, 0}, {0.1, 0.08, 0.8}), dir + "/wave_paddle.obj");
     // A crate, 0.1 m cube, for the floating-body scene.
     mesh::export_mesh(mesh::box({0, 0, 0}, {0.1, 0.1, 0.1}), dir + "/crate.obj");
     // Scene 3: a valley 8 m long falling 0.12 m per metre along x, with parabolic
