@@ -483,20 +483,16 @@ std::vector<std::vector<double>> read_keys(Reader& r, const Scene& s, std::strin
 // A static solid moved as told: `motion` (its velocity) and `angular_motion` (its
 // angular velocity about `axis` through `pivot`).
 void read_motion(Reader& r, const Scene& s, Solid& solid) {
-  for (const auto& [key, columns, units] :
-       {std::tuple{"motion", std::vector<std::string_view>{"t", "vx", "vy", "vz"}, "s, m/s"},
-        std::tuple{"angular_motion", std::vector<std::string_view>{"t", "omega"}, "s, rad/s"}}) {
+  for (const char* key : {"motion", "angular_motion"})
     if (r.has(key) && solid.body())
       r.fail(key, "only for a static solid (a dynamic or breakable one moves by its forces)");
-    for (const std::vector<double>& row : read_keys(r, s, key, columns, units)) {
-      if (columns.size() == 4) {
-        solid.motion_times.push_back(row[0]);
-        solid.motion_velocities.emplace_back(row[1], row[2], row[3]);
-      } else {
-        solid.angular_times.push_back(row[0]);
-        solid.angular_rates.push_back(row[1]);
-      }
-    }
+  for (const std::vector<double>& row : read_keys(r, s, "motion", {"t", "vx", "vy", "vz"}, "s, m/s")) {
+    solid.motion_times.push_back(row[0]);
+    solid.motion_velocities.emplace_back(row[1], row[2], row[3]);
+  }
+  for (const std::vector<double>& row : read_keys(r, s, "angular_motion", {"t", "omega"}, "s, rad/s")) {
+    solid.angular_times.push_back(row[0]);
+    solid.angular_rates.push_back(row[1]);
   }
   if (solid.angular_times.empty()) {
     for (const char* key : {"axis", "pivot"})
