@@ -24,6 +24,10 @@ void write_tank(const std::string& path, const Eigen::Vector3i& n, double spacin
 // particles lie one spacing behind the inner ones.
 void write_thick_tank(const std::string& path, const Eigen::Vector3i& n, double spacing, double thickness);
 
+// A solid block [lo, hi] sampled at `spacing` (its surface, as bw-sample samples a
+// mesh) into `path`: a floor slab or a wall of a tank built of separate solids.
+void write_block(const std::string& path, const Vec3d& lo, const Vec3d& hi, double spacing);
+
 // Outer size of that tank.
 Vec3d tank_size(const Eigen::Vector3i& n, double spacing);
 
