@@ -238,6 +238,14 @@ TEST(Continuity, DiffusedColumnAtRestKeepsItsPressure) {
   EXPECT_NEAR(late / early, 1.0, 0.005);
 }
 
+// The weight of a run's water at its end (its particles' mass from the run file).
+double water_weight(const RunRecord& run, const sim::RunSummary& summary) {
+  double mass = 0;
+  for (const auto& [name, value] : run.parameters)
+    if (name == "particle_mass") mass = value * static_cast<double>(summary.fluid_end);
+  return mass * 9.81;
+}
+
 // The loads the run file records: the tank of a still column carries the water's
 // weight (mean over the last 0.4 s, when the pool has settled) and no net sideways
 // force (its walls push the water both ways); bw-measure loads prints the history.
@@ -270,10 +278,7 @@ loads = true
   ASSERT_EQ(run.loads.back().size(), 1u);
   const std::size_t last = run.frames.size() - 1, first = last - 8;  // 0.4 s
   const Vec3d force = (run.loads[last][0] - run.loads[first][0]) / (run.frames[last].time - run.frames[first].time);
-  double mass = 0;
-  for (const auto& [name, value] : run.parameters)
-    if (name == "particle_mass") mass = value * static_cast<double>(summary.fluid_end);
-  const double weight = mass * 9.81;
+  const double weight = water_weight(run, summary);
   test::figure("weight of the water", weight, "N");
   test::figure("mean force on the tank, vertical", -force.z(), "N");
   test::figure("mean force on the tank, sideways", std::hypot(force.x(), force.y()), "N");
@@ -339,10 +344,7 @@ loads = true
   auto force = [&](std::size_t part) {
     return Vec3d((run.loads[last][part] - run.loads[first][part]) / (run.frames[last].time - run.frames[first].time));
   };
-  double mass = 0;
-  for (const auto& [name, value] : run.parameters)
-    if (name == "particle_mass") mass = value * static_cast<double>(summary.fluid_end);
-  const double weight = mass * 9.81, thrust = weight * kHeight / (2 * kWidth);
+  const double weight = water_weight(run, summary), thrust = weight * kHeight / (2 * kWidth);
   const Vec3d floor = force(0), west = force(1), east = force(2), south = force(3), north = force(4);
   const double walls_vertical = west.z() + east.z() + south.z() + north.z();
   const double walls_thrust = -west.x() + east.x() - south.y() + north.y();
