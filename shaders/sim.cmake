@@ -5,6 +5,7 @@ bw_embed_files(TARGET bw_sim_kernels NAMESPACE bw::sim_kernels FILES
   ${CMAKE_CURRENT_LIST_DIR}/sph_common.h
   ${CMAKE_CURRENT_LIST_DIR}/sph_vector.h
   ${CMAKE_CURRENT_LIST_DIR}/sph_boundary.h
+  ${CMAKE_CURRENT_LIST_DIR}/sph_images.h
   ${CMAKE_CURRENT_LIST_DIR}/radix_sort.cl
   ${CMAKE_CURRENT_LIST_DIR}/grid.cl
   ${CMAKE_CURRENT_LIST_DIR}/fluid.cl

@@ -386,10 +386,13 @@ void read_fluid(Reader& top, Scene& s) {
     const std::string wall = r.string("wall_pressure", "hydrostatic");
     if (wall == "hydrostatic") f.wall_pressure = WallPressure::hydrostatic;
     else if (wall == "mirrored") f.wall_pressure = WallPressure::mirrored;
-    else r.fail("wall_pressure", fmt::format("\"{}\" is not a wall pressure: \"mirrored\" or \"hydrostatic\"", wall));
+    else if (wall == "images") f.wall_pressure = WallPressure::images;
+    else
+      r.fail("wall_pressure",
+             fmt::format("\"{}\" is not a wall pressure: \"mirrored\", \"hydrostatic\" or \"images\"", wall));
     // Measured: with the summation the layer against a wall leaks through it.
-    if (f.wall_pressure == WallPressure::hydrostatic && f.density == DensityScheme::summation)
-      r.fail("wall_pressure", "the hydrostatic wall pressure needs fluid.density = \"continuity\"");
+    if (f.wall_pressure != WallPressure::mirrored && f.density == DensityScheme::summation)
+      r.fail("wall_pressure", fmt::format("the {} wall pressure needs fluid.density = \"continuity\"", wall));
   }
   if (r.has("max_particles")) {
     f.max_particles = r.integer("max_particles", 0);

@@ -34,7 +34,9 @@ struct TimeSettings {
 enum class DensityScheme { continuity, summation };
 // The pressure a boundary particle stands for in the boundary force (docs/scene.md,
 // "Density"): the fluid particle's own, or the wall's own, extrapolated from the fluid.
-enum class WallPressure { mirrored, hydrostatic };
+// "images": the hydrostatic wall, with the flat faces of static solids mirror images of
+// the fluid in place of their particles where the wall there is those faces alone.
+enum class WallPressure { mirrored, hydrostatic, images };
 
 struct FluidSettings {
   double rho0 = 998;           // kg/m^3

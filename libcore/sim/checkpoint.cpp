@@ -144,6 +144,7 @@ std::string setup_fingerprint(const Setup& setup) {
   if (p.continuity && p.diffusion > 0 && p.diffusion_factor != scene::TimeSettings{}.diffusion_factor)
     d.value(p.diffusion_factor);
   if (p.wall_hydrostatic) d.value(2.0);
+  if (p.wall_images) d.value(3.0);
   for (const auto* a : {&setup.fluid, &setup.boundary.particles}) {
     d.vec(a->x), d.vec(a->y), d.vec(a->z), d.vec(a->vx), d.vec(a->vy), d.vec(a->vz);
   }

@@ -255,6 +255,7 @@ RunSummary Simulation::run() {
                        {"continuity", p.continuity ? 1.0 : 0.0},
                        {"density_diffusion", p.continuity ? p.diffusion : 0.0},
                        {"wall_hydrostatic", p.wall_hydrostatic ? 1.0 : 0.0},
+                       {"wall_images", p.wall_images ? 1.0 : 0.0},
                        {"end_time", p.end_time},
                        {"frame_rate", p.frame_rate},
                        {"dt_min", p.dt_min},

@@ -497,7 +497,8 @@ Setup prepare(const scene::Scene& s, double end_time) {
   p.gamma1 = f.gamma1 >= 0 ? f.gamma1 : calibrated_gamma1(p.spacing, p.h);
   // A hydrostatic wall pushes as the missing fluid would (gamma1); a mirrored one with
   // half of it, and the layer against it carries a density step (docs/scene.md, "Density").
-  p.wall_hydrostatic = f.wall_pressure == scene::WallPressure::hydrostatic;
+  p.wall_hydrostatic = f.wall_pressure != scene::WallPressure::mirrored;
+  p.wall_images = f.wall_pressure == scene::WallPressure::images;
   p.gamma2 = f.gamma2 >= 0 ? f.gamma2 : (p.wall_hydrostatic ? 1.0 : 0.5) * p.gamma1;
   p.gravity = s.gravity;
   p.end_time = end_time;

@@ -85,6 +85,9 @@ struct Parameters {
   // particle's own (mirrored), or the boundary particle's own, extrapolated from the
   // fluid around it (fluid.cl, boundary_pressure; continuity only).
   bool wall_hydrostatic = false;
+  // The flat faces of static solids as mirror images of the fluid (sph_images.h; with
+  // wall_hydrostatic for the rest of the walls).
+  bool wall_images = false;
 };
 
 // The signal speed of the CFL limit where the densest particle has density rho: the

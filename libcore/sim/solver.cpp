@@ -97,7 +97,8 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   const bool diffusion = p.continuity && p.diffusion > 0;
   const std::string fluid_options = options + (diffusion ? "" : " -DBW_DIFFUSION=0") +
                                     (P.wall_layer_step != 0 ? "" : " -DBW_WALL_STEP_ON=0") +
-                                    (P.hx == 0 && P.hy == 0 ? " -DBW_GRAVITY_ALONG_Z=1" : "");
+                                    (P.hx == 0 && P.hy == 0 ? " -DBW_GRAVITY_ALONG_Z=1" : "") +
+                                    (p.wall_images ? " -DBW_GHOST_WALLS=1" : "");
   s.fluid_program = context.build("fluid.cl", compute::embedded_kernels(), fluid_options);
   s.fluid_keys = s.grid_program.kernel("fluid_keys");
   s.boundary_keys = s.grid_program.kernel("boundary_keys");
@@ -112,6 +113,7 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   s.wall_fraction = s.fluid_program.kernel("fluid_wall_fraction");
   s.boundary_pressure = s.fluid_program.kernel("boundary_pressure");
   s.wall_step = s.fluid_program.kernel("fluid_wall_step");
+  s.wall_planes = s.fluid_program.kernel("fluid_wall_planes");
   s.forces = s.fluid_program.kernel("fluid_forces");
   s.integrate = s.fluid_program.kernel("fluid_integrate");
   s.step_reduce = s.fluid_program.kernel("fluid_step_reduce");
@@ -141,6 +143,15 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   s.vol = s.floats(cap, "fluid 1/rho");
   s.phi = s.floats(cap, "fluid boundary fraction");
   s.diffusion_rate = s.floats(cap, "fluid diffusion rate");
+  {
+    // Without the images one element each: the kernels take them, never read them.
+    const std::size_t images = p.wall_images ? cap + kPad : 1;
+    s.wp0 = context.buffer(images * 4 * sizeof(float), "fluid mirror plane 0");
+    s.wp1 = context.buffer(images * 4 * sizeof(float), "fluid mirror plane 1");
+    s.wp2 = context.buffer(images * 4 * sizeof(float), "fluid mirror plane 2");
+    s.image_push = context.buffer(images * 4 * sizeof(float), "fluid images' push");
+    s.image_weight = context.buffer(images * 4 * sizeof(float), "fluid images' replaced weight");
+  }
   s.ax = s.floats(cap, "fluid ax");
   s.ay = s.floats(cap, "fluid ay");
   s.az = s.floats(cap, "fluid az");
@@ -187,6 +198,7 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   s.bny = s.floats(nb, "boundary normal y");
   s.bnz = s.floats(nb, "boundary normal z");
   s.bsolid = s.uints(nb, "boundary solid");
+  s.bflat = s.floats(nb, "boundary flatness");
   P.static_owners = static_cast<std::uint32_t>(bset.one_sided.size());
   s.one_sided = s.uints(std::max<std::size_t>(1, bset.one_sided.size()), "one-sided solids");
   if (!bset.one_sided.empty()) context.write_vector(s.one_sided, bset.one_sided);
@@ -194,7 +206,8 @@ Solver::Solver(const Setup& setup, compute::Context& context)
     Buffer ux = s.floats(nb, "boundary x (unsorted)"), uy = s.floats(nb, "boundary y (unsorted)"),
            uz = s.floats(nb, "boundary z (unsorted)"), us = s.uints(nb, "boundary solid (unsorted)");
     Buffer unx = s.floats(nb, "boundary normal x (unsorted)"), uny = s.floats(nb, "boundary normal y (unsorted)"),
-           unz = s.floats(nb, "boundary normal z (unsorted)");
+           unz = s.floats(nb, "boundary normal z (unsorted)"), uflat = s.floats(nb, "boundary flatness (unsorted)");
+    context.write_vector(uflat, bset.flatness);
     context.write_vector(unx, bset.nx);
     context.write_vector(uny, bset.ny);
     context.write_vector(unz, bset.nz);
@@ -214,7 +227,8 @@ Solver::Solver(const Setup& setup, compute::Context& context)
       context.launch(s.gather_float, s.nb);
       s.gather_float.args(s.nb, bvalues, uz, s.bz);
       context.launch(s.gather_float, s.nb);
-      for (auto [from, to] : {std::pair{&unx, &s.bnx}, std::pair{&uny, &s.bny}, std::pair{&unz, &s.bnz}}) {
+      for (auto [from, to] : {std::pair{&unx, &s.bnx}, std::pair{&uny, &s.bny}, std::pair{&unz, &s.bnz},
+                              std::pair{&uflat, &s.bflat}}) {
         s.gather_float.args(s.nb, bvalues, *from, *to);
         context.launch(s.gather_float, s.nb);
       }
@@ -432,7 +446,7 @@ std::uint64_t Solver::device_bytes() const {
     total += s.x[k].bytes() + s.y[k].bytes() + s.z[k].bytes() + s.vx[k].bytes() + s.vy[k].bytes() + s.vz[k].bytes() +
              s.id[k].bytes() + s.hold[k].bytes();
   for (const Buffer* b : {&s.keys, &s.values, &s.keys_tmp, &s.values_tmp, &s.rho, &s.pres, &s.pterm, &s.vol, &s.phi, &s.diffusion_rate, &s.ax,
-                          &s.ay, &s.az, &s.rho_state, &s.start, &s.bx, &s.by, &s.bz, &s.bpsi, &s.bpt, &s.bvx, &s.bvy, &s.bvz, &s.bnx, &s.bny, &s.bnz, &s.bsolid,
+                          &s.ay, &s.az, &s.rho_state, &s.start, &s.bx, &s.by, &s.bz, &s.bpsi, &s.bpt, &s.bvx, &s.bvy, &s.bvz, &s.bnx, &s.bny, &s.bnz, &s.bsolid, &s.wp0, &s.wp1, &s.wp2, &s.image_push, &s.image_weight,
                           &s.bstart, &s.step_out, &s.frame_out, &s.ex, &s.ey, &s.ez, &s.emitter_table})
     total += b->bytes();
   return total + s.sort->scratch_bytes() + s.rigid_bytes() + s.bflat.bytes() + s.fracture_bytes();

@@ -138,6 +138,7 @@ struct Solver::Impl {
   Kernel fluid_keys, boundary_keys, cell_starts, reorder, gather_float, gather_uint, neighbour_lists;
   Kernel psi, wall_fraction, boundary_pressure, wall_step, density, forces, integrate, step_reduce, frame_reduce, emit;
   Kernel density_rate;  // the density pass that also finds the diffusion's rate (fluid.cl)
+  Kernel wall_planes;   // each particle's mirror planes (fluid.wall_pressure = "images", sph_images.h)
   std::unique_ptr<compute::RadixSort> sort;
 
   // fluid
@@ -149,6 +150,9 @@ struct Solver::Impl {
   // at the start of the step, from which fluid_density integrates the step).
   Buffer rho, rho_state, pres, pterm, vol, phi, ax, ay, az, start;
   Buffer diffusion_rate;  // per particle, the density diffusion's rate on its own density (1/s)
+  // per particle (float4), with the images: its mirror planes, and per plane the images'
+  // push along the normal and the weight of the boundary particles they replace
+  Buffer wp0, wp1, wp2, image_push, image_weight;
   static constexpr int kRateEvery = 4;         // steps between the rate's computations at most
   static constexpr double kRateGrowth = 1.25;  // how much the largest rate may grow meanwhile
   bool rate_wanted = true;  // the density pass in flight computes the rate
@@ -318,9 +322,13 @@ struct Solver::Impl {
       wall_fraction.args(Q, start, x[f], y[f], z[f], bstart, bx, by, bz, bpsi, phi);
       ctx.launch(wall_fraction, n);
     }
+    if (params.wall_images && n > 0) {
+      wall_planes.args(Q, start, x[f], y[f], z[f], bstart, bx, by, bz, bnx, bny, bnz, bflat, bsolid, wp0, wp1, wp2);
+      ctx.launch(wall_planes, n);
+    }
     Kernel& pass = Q.continuity && rate_wanted ? density_rate : density;
     pass.args(Q, static_cast<float>(density_dt), start, x[f], y[f], z[f], vx[f], vy[f], vz[f], rho_state, bstart, bx,
-              by, bz, bpsi, bvx, bvy, bvz, rho, pres, pterm, vol, phi, diffusion_rate);
+              by, bz, bpsi, bvx, bvy, bvz, rho, pres, pterm, vol, phi, diffusion_rate, wp0, wp1, wp2);
     ctx.launch(pass, n);
     if (Q.wall_hydrostatic && nb > 0) {  // the walls' pressures, from the fluid's just found
       boundary_pressure.args(Q, nb, start, x[f], y[f], z[f], rho, pres, bx, by, bz, bpt);
@@ -331,7 +339,7 @@ struct Solver::Impl {
   void launch_forces() {
     const int f = front;
     forces.args(P, start, x[f], y[f], z[f], vx[f], vy[f], vz[f], rho, pterm, vol, bstart, bx, by, bz, bpsi, bpt, bvx,
-                bvy, bvz, ax, ay, az);
+                bvy, bvz, ax, ay, az, wp0, wp1, wp2, image_push, image_weight, bnx, bny, bnz, bflat);
     ctx.launch(forces, n);
   }
 

@@ -213,6 +213,10 @@ TEST(Scene, DensitySchemeAndLoads) {
   EXPECT_EQ(m.fluid.wall_pressure, bw::scene::WallPressure::mirrored) << "the summation's only wall";
   const Scene w = load_scene(f.write(kMinimal + "[fluid]\nwall_pressure = \"mirrored\"\n"));
   EXPECT_EQ(w.fluid.wall_pressure, bw::scene::WallPressure::mirrored);
+  const Scene g = load_scene(f.write(kMinimal + "[fluid]\nwall_pressure = \"images\"\n"));
+  EXPECT_EQ(g.fluid.wall_pressure, bw::scene::WallPressure::images);
+  expect_error(f, kMinimal + "[fluid]\ndensity = \"summation\"\nwall_pressure = \"images\"\n",
+               "fluid.wall_pressure: the images wall pressure needs fluid.density = \"continuity\"");
   expect_error(f, kMinimal + "[fluid]\nwall_pressure = \"adami\"\n", "fluid.wall_pressure: \"adami\" is not a wall pressure");
   expect_error(f, kMinimal + "[fluid]\ndensity = \"summation\"\nwall_pressure = \"hydrostatic\"\n",
                "fluid.wall_pressure: the hydrostatic wall pressure needs fluid.density = \"continuity\"");

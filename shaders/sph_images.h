@@ -1,0 +1,85 @@
+// Mirror images of the fluid in place of the particles of static solids' flat faces
+// (fluid.wall_pressure = "images", docs/scene.md "Walls as mirror images"): the rules
+// shared by the fluid kernels (fluid.cl), which apply the images' push and density
+// rate, and the rigid-body kernels (rigid.cl), which give their reaction to the faces'
+// particles for the sensors and the loads (OpenCL C only).
+//
+// A fluid particle near such faces holds up to three planes (fluid_wall_planes), each
+// a float4 (n, d): the face's outward unit normal n, toward the fluid, and n . x = d on
+// the face, half a spacing beyond its particles. The images of a neighbour j are its
+// reflections across every non-empty set of the particle's planes (perpendicular to
+// one another: 1, 3 or 7 images), with its velocity reflected alike (a wall without
+// friction; the faces' particles keep their friction). Boundary particles behind one
+// of the planes stand for the same wall and give way to the images.
+#ifndef BW_SPH_IMAGES_H
+#define BW_SPH_IMAGES_H
+
+#include "sph_common.h"
+
+// 1: the flat faces of static solids are mirror images of the fluid (the solver builds
+// the fluid's and the rigid bodies' kernels so for fluid.wall_pressure = "images").
+#ifndef BW_GHOST_WALLS
+#define BW_GHOST_WALLS 0
+#endif
+
+// Planes held per fluid particle at most (a corner of three faces).
+#define BW_IMAGE_PLANES 3
+// Two face particles lie on the same plane when their normals agree to this cosine
+// and their planes' offsets to this fraction of the half spacing P.layer.
+#define BW_IMAGE_SAME_COS 0.999f
+#define BW_IMAGE_SAME_OFFSET 0.5f
+// Planes whose normals' cosine exceeds this are not perpendicular: their reflections
+// do not close into a group of images, and the particle keeps the faces' particles.
+#define BW_IMAGE_PERPENDICULAR 0.02f
+// A boundary particle's own flatness from which it lies on a face (rigid.cl's
+// BW_FACE_FLATNESS).
+#define BW_IMAGE_FACE_FLATNESS 0.9f
+
+// The planes of fluid particle i (0 to 3; planes past the count have n = 0).
+static inline int bw_image_planes(uint i, __global const float4* wp0, __global const float4* wp1,
+                                  __global const float4* wp2, float4* pl) {
+  pl[0] = wp0[i];
+  pl[1] = wp1[i];
+  pl[2] = wp2[i];
+  int count = 0;
+  for (int k = 0; k < BW_IMAGE_PLANES; ++k) count += (pl[k].x != 0.0f || pl[k].y != 0.0f || pl[k].z != 0.0f) ? 1 : 0;
+  return count;
+}
+
+// Whether a point lies behind plane p (on its solid's side).
+static inline bool bw_image_behind(float4 p, float x, float y, float z) { return p.x * x + p.y * y + p.z * z < p.w; }
+
+// Whether a boundary particle at (x, y, z) gives way to the images: it lies behind one
+// of the particle's planes.
+static inline bool bw_image_replaced(const float4* pl, int count, float x, float y, float z) {
+  bool behind = false;
+  for (int k = 0; k < count; ++k) behind = behind || bw_image_behind(pl[k], x, y, z);
+  return behind;
+}
+
+// The plane whose face a replaced boundary particle b carries the images' push on
+// (its share, by Psi_b W, of what they push along the plane's normal): the plane it
+// lies on, as a face particle (its normal along the plane's, its face half a spacing
+// beyond it on the plane); an edge's or a corner's particle (a concave edge's rows, or
+// the edge where a box's face meets the floor it stands on, which is the face's first
+// row) the plane nearest its normal among those it lies behind. -1 for the rest, a
+// face buried against another solid or the back of a thin part, which carry none.
+static inline int bw_image_face_of(SimParams P, const float4* pl, int count, float xb, float yb, float zb, float nx,
+                                   float ny, float nz, float flatness) {
+  int best = -1;
+  float cos_best = 0.0f;
+  for (int k = 0; k < count; ++k) {
+    if (!bw_image_behind(pl[k], xb, yb, zb)) continue;
+    const float c = pl[k].x * nx + pl[k].y * ny + pl[k].z * nz;
+    if (flatness >= BW_IMAGE_FACE_FLATNESS) {
+      const float d = nx * xb + ny * yb + nz * zb + P.layer;
+      if (c > BW_IMAGE_SAME_COS && fabs(d - pl[k].w) < BW_IMAGE_SAME_OFFSET * P.layer) return k;
+    } else if (c > cos_best) {
+      cos_best = c;
+      best = k;
+    }
+  }
+  return flatness >= BW_IMAGE_FACE_FLATNESS ? -1 : best;
+}
+
+#endif
