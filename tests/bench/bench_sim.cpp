@@ -61,16 +61,26 @@ struct Result {
 
 // A dam break: a column n x n x 2n spacings against the end of a closed tank
 // 4n x n x 3n, spacing 1 cm, h = 2 spacings (~33 neighbours); its scene file in dir.
-bw::scene::Scene dam_break(const bw::test::TempDir& dir, int n, const std::string& density, double diffusion) {
+// With a wall pressure named, the tank has walls two spacings thick, its faces toward
+// the water (what the images need: a box's faces with the water inside look away from
+// it), the cavity 4n x n x 3n spacings.
+bw::scene::Scene dam_break(const bw::test::TempDir& dir, int n, const std::string& density, double diffusion,
+                           const std::string& wall) {
   const double s = 0.01;
-  bw::test::write_tank(dir.file("tank.h5"), {4 * n, n, 3 * n}, s);
-  const double L = (4 * n + 0.5) * s, W = (n + 0.5) * s, H = (3 * n + 0.5) * s;
-  std::ofstream(dir.file("dam.toml")) << "spacing = 0.01\n[time]\nend = 10\n[domain]\nmin = [-0.02, -0.02, -0.02]\n"
-                                      << "max = [" << L + 0.02 << ", " << W + 0.02 << ", " << H + 0.02 << "]\n"
-                                      << "[[fluid.block]]\nmin = [0.01, 0.01, 0.01]\nmax = [" << n * s << ", " << n * s
-                                      << ", " << 2 * n * s << "]\n[[solid]]\nparticles = \"tank.h5\"\n"
+  const bool thick = !wall.empty();
+  if (thick) bw::test::write_thick_tank(dir.file("tank.h5"), {4 * n, n, 3 * n}, s, 2 * s);
+  else bw::test::write_tank(dir.file("tank.h5"), {4 * n, n, 3 * n}, s);
+  const double L = (4 * n + 0.5) * s, W = (n + 0.5) * s, H = (3 * n + 0.5) * s, lo = thick ? 0.0 : s;
+  const double margin = thick ? 0.04 : 0.02;
+  std::ofstream(dir.file("dam.toml")) << "spacing = 0.01\n[time]\nend = 10\n[domain]\nmin = [" << -margin << ", "
+                                      << -margin << ", " << -margin << "]\n"
+                                      << "max = [" << L + margin << ", " << W + margin << ", " << H + margin << "]\n"
+                                      << "[[fluid.block]]\nmin = [" << lo << ", " << lo << ", " << lo << "]\nmax = ["
+                                      << n * s << ", " << n * s << ", " << 2 * n * s
+                                      << "]\n[[solid]]\nparticles = \"tank.h5\"\n"
                                       << "[fluid]\ndensity = \"" << density << "\"\n";
   if (diffusion >= 0) std::ofstream(dir.file("dam.toml"), std::ios::app) << "diffusion = " << diffusion << "\n";
+  if (!wall.empty()) std::ofstream(dir.file("dam.toml"), std::ios::app) << "wall_pressure = \"" << wall << "\"\n";
   return bw::scene::load_scene(dir.file("dam.toml"));
 }
 
@@ -93,10 +103,10 @@ std::vector<std::pair<std::string, double>> profile_steps(bw::sim::Solver& solve
 }
 
 Result run_case(const bw::compute::DeviceInfo& device, int n, bool profile, double simulate_seconds,
-               const std::string& density, double diffusion) {
+               const std::string& density, double diffusion, const std::string& wall) {
   bw::Stopwatch setup;
   bw::test::TempDir dir;
-  bw::sim::Simulation simulation(dam_break(dir, n, density, diffusion), device, quiet_options(dir));
+  bw::sim::Simulation simulation(dam_break(dir, n, density, diffusion, wall), device, quiet_options(dir));
   bw::sim::Solver& solver = simulation.solver();
 
   Result r;
@@ -170,10 +180,11 @@ double density_ms(bw::sim::Solver& solver, int steps) {
 // The density diffusion's own cost: the density pass of the case with it and of the
 // same case built without its terms (fluid.diffusion = 0), profiled in turns, 8 steps
 // at a time; the least of 6 turns each (one turn's launches vary by 10-20%).
-std::pair<double, double> diffusion_cost(const bw::compute::DeviceInfo& device, int n, double diffusion) {
+std::pair<double, double> diffusion_cost(const bw::compute::DeviceInfo& device, int n, double diffusion,
+                                         const std::string& wall) {
   bw::test::TempDir a, b;
-  bw::sim::Simulation with(dam_break(a, n, "continuity", diffusion), device, quiet_options(a));
-  bw::sim::Simulation without(dam_break(b, n, "continuity", 0.0), device, quiet_options(b));
+  bw::sim::Simulation with(dam_break(a, n, "continuity", diffusion, wall), device, quiet_options(a));
+  bw::sim::Simulation without(dam_break(b, n, "continuity", 0.0, wall), device, quiet_options(b));
   for (int i = 0; i < 5; ++i) with.solver().step(10.0), without.solver().step(10.0);
   double least_with = 1e300, least_without = 1e300;
   for (int turn = 0; turn < 6; ++turn) {
@@ -210,13 +221,15 @@ int main(int argc, char** argv) {
                  "  bench-sim\n"
                  "  bench-sim --quick\n"
                  "  bench-sim --device gpu --sizes 30000,120000,1000000,4000000 --csv sim.csv\n"
-                 "  bench-sim --sizes 120000 --density summation\n");
+                 "  bench-sim --sizes 120000 --density summation\n"
+                 "  bench-sim --sizes 120000 --wall-pressure images\n");
   bool quick = false;
   std::string device_choice = "auto", csv;
   std::vector<double> counts;
   double profile_near = 120000, simulate = 0.25;
   std::string density = "continuity";  // the scene's default
   double diffusion = -1;
+  std::string wall;  // the scene's default
   auto* quick_flag = app.add_flag("--quick", quick, "The 30 k case only");
   app.add_option("--sizes", counts, "Fluid particle counts to run, about (default 30000,120000,500000)")
       ->delimiter(',')
@@ -242,14 +255,21 @@ int main(int argc, char** argv) {
                  "fluid.diffusion (delta) with --density continuity (default: the scene's default; with a delta "
                  "above 0 the profiled case also prints the diffusion's own cost)")
       ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--wall-pressure", wall,
+                 "fluid.wall_pressure of the runs (default: the scene's default): hydrostatic, mirrored or images (the "
+                 "tank's flat faces as mirror images of the fluid); named, the tank's walls are two spacings thick")
+      ->check(CLI::IsMember({"hydrostatic", "mirrored", "images"}));
   return bw::cli::run(app, argc, argv, [&]() -> int {
     if (diffusion >= 0 && density != "continuity")
       bw::fail_input("--diffusion {}: only with --density continuity (the summation has no diffusion)", diffusion);
+    if (!wall.empty() && wall != "mirrored" && density != "continuity")
+      bw::fail_input("--wall-pressure {}: only with --density continuity (the summation has the mirrored wall)", wall);
     const bw::compute::DeviceInfo device = bw::compute::choose_device(device_choice);
     std::printf("bench-sim: %s, %d compute units, vector width %d; load average %s\n", device.label().c_str(),
                 device.compute_units, bw::compute::kernel_vector_width(device), load_average().c_str());
-    std::printf("dam break, spacing 1 cm, h = 2 spacings, %s density%s; rounds of 8 steps after 5 warm-up steps\n\n",
-                density.c_str(), diffusion >= 0 ? fmt::format(", diffusion {}", diffusion).c_str() : "");
+    std::printf("dam break, spacing 1 cm, h = 2 spacings, %s density%s%s; rounds of 8 steps after 5 warm-up steps\n\n",
+                density.c_str(), diffusion >= 0 ? fmt::format(", diffusion {}", diffusion).c_str() : "",
+                wall.empty() ? "" : fmt::format(", {} wall", wall).c_str());
     std::vector<int> sizes = {25, 39, 63};
     if (quick) sizes = {25};
     if (!counts.empty()) {
@@ -266,9 +286,9 @@ int main(int argc, char** argv) {
     std::vector<Result> results;
     for (int n : sizes) {
       std::printf("column %d x %d x %d:\n", n, n, 2 * n);
-      const Result r = run_case(device, n, n == profiled, n == smallest ? simulate : 0.0, density, diffusion);
+      const Result r = run_case(device, n, n == profiled, n == smallest ? simulate : 0.0, density, diffusion, wall);
       if (n == profiled && density == "continuity" && diffusion != 0) {
-        const auto [with, without] = diffusion_cost(device, n, diffusion);
+        const auto [with, without] = diffusion_cost(device, n, diffusion, wall);
         std::printf("  density diffusion: fluid_density %.2f ms per step with it, %.2f ms built without it (least "
                     "of 6 turns of 8 steps each): %.2f ms, %.1f%% of the %.2f ms step above\n",
                     with, without, with - without, 100 * (with - without) / r.step_ms, r.step_ms);
