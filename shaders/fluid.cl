@@ -149,7 +149,7 @@ __kernel void fluid_wall_planes(SimParams P, __global const uint* start, __globa
       const uint s = bstart[row + x0], e = bstart[row + x1 + 1];
       for (uint b = s; b < e; ++b) {
         const float dx = xi - bx[b], dy = yi - by[b], dz = zi - bz[b];
-        if (dx * dx + dy * dy + dz * dz >= h2 || bsolid[b] >= P.static_owners || bflat[b] < BW_IMAGE_FACE_FLATNESS)
+        if (dx * dx + dy * dy + dz * dz >= h2 || bsolid[b] >= P.static_owners || bflat[b] < BW_FACE_FLATNESS)
           continue;
         const float nx = bnx[b], ny = bny[b], nz = bnz[b];
         const float d = nx * bx[b] + ny * by[b] + nz * bz[b] + P.layer;
@@ -183,20 +183,15 @@ __kernel void fluid_wall_planes(SimParams P, __global const uint* start, __globa
         const float xb = bx[b], yb = by[b], zb = bz[b];
         const float dx = xi - xb, dy = yi - yb, dz = zi - zb;
         if (dx * dx + dy * dy + dz * dz >= h2) continue;
-        int behind = 0, on = 0;
-        const float nx = bnx[b], ny = bny[b], nz = bnz[b];
-        const bool face = bflat[b] >= BW_IMAGE_FACE_FLATNESS;
-        const float d = nx * xb + ny * yb + nz * zb + P.layer;
-        for (int k = 0; k < count; ++k) {
-          if (!bw_image_behind(pl[k], xb, yb, zb)) continue;
-          ++behind;
-          const bool along = pl[k].x * nx + pl[k].y * ny + pl[k].z * nz > BW_IMAGE_SAME_COS;
-          on += face && along && fabs(pl[k].w - d) < same_d ? 1 : 0;
-        }
+        int behind = 0;
+        for (int k = 0; k < count; ++k) behind += bw_image_behind(pl[k], xb, yb, zb) ? 1 : 0;
         if (behind == 0) continue;  // in front of the wall: a particle of its own
+        const float nx = bnx[b], ny = bny[b], nz = bnz[b];
+        const bool face = bflat[b] >= BW_FACE_FLATNESS;
+        const bool on = face && bw_image_face_of(P, pl, count, xb, yb, zb, nx, ny, nz, bflat[b]) >= 0;
         if (bsolid[b] >= P.static_owners) {
           ok = false;
-        } else if (behind == 1 && on == 0) {
+        } else if (behind == 1 && !on) {
           // A face or an edge buried against another plane's solid passes (a wall block's
           // end against the next wall); anything else is a wall the planes do not describe.
           const float ox = xb + spacing * nx, oy = yb + spacing * ny, oz = zb + spacing * nz;

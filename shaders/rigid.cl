@@ -15,11 +15,6 @@
 
 // Pairs closer than this fraction of h^2 get no fluid force (fluid.cl's rule).
 #define BW_MIN_R2_FRACTION 1e-12f
-// A boundary particle lies on a face of its solid when the normals of the surface in
-// its cell agree this well (flatness, sim/setup.h surface_normals: 1 on a face, 0.71
-// on a right-angled edge; 0.9 takes edges of up to 50 degrees between their faces, and
-// curved surfaces sampled finer than their curvature, as faces).
-#define BW_FACE_FLATNESS 0.9f
 // The drag below Coulomb's limit is c_t v_t with c_t = this factor m omega per pair, a
 // body's M omega in all. An explicit step damps a velocity stably while c dt / m_eff
 // < 2, and a sliding contact's effective mass at the contact point is down to M / 4

@@ -10,6 +10,12 @@
 
 #include "sph_common.h"
 
+// A boundary particle lies on a face of its solid when the normals of the surface in
+// its cell agree this well (flatness, sim/setup.h surface_normals: 1 on a face, 0.71
+// on a right-angled edge; 0.9 takes edges of up to 50 degrees between their faces, and
+// curved surfaces sampled finer than their curvature, as faces).
+#define BW_FACE_FLATNESS 0.9f
+
 // 1 / sqrt(x) as sph_vector.h's bw_rsqrt computes it, one value at a time (the force
 // kernel's lanes and this give the same bits).
 static inline float bw_rsqrt1(float x) {

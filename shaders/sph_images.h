@@ -14,6 +14,7 @@
 #ifndef BW_SPH_IMAGES_H
 #define BW_SPH_IMAGES_H
 
+#include "sph_boundary.h"
 #include "sph_common.h"
 
 // 1: the flat faces of static solids are mirror images of the fluid (the solver builds
@@ -31,9 +32,6 @@
 // Planes whose normals' cosine exceeds this are not perpendicular: their reflections
 // do not close into a group of images, and the particle keeps the faces' particles.
 #define BW_IMAGE_PERPENDICULAR 0.02f
-// A boundary particle's own flatness from which it lies on a face (rigid.cl's
-// BW_FACE_FLATNESS).
-#define BW_IMAGE_FACE_FLATNESS 0.9f
 
 // The planes of fluid particle i (0 to 3; planes past the count have n = 0).
 static inline int bw_image_planes(uint i, __global const float4* wp0, __global const float4* wp1,
@@ -71,7 +69,7 @@ static inline int bw_image_face_of(SimParams P, const float4* pl, int count, flo
   for (int k = 0; k < count; ++k) {
     if (!bw_image_behind(pl[k], xb, yb, zb)) continue;
     const float c = pl[k].x * nx + pl[k].y * ny + pl[k].z * nz;
-    if (flatness >= BW_IMAGE_FACE_FLATNESS) {
+    if (flatness >= BW_FACE_FLATNESS) {
       const float d = nx * xb + ny * yb + nz * zb + P.layer;
       if (c > BW_IMAGE_SAME_COS && fabs(d - pl[k].w) < BW_IMAGE_SAME_OFFSET * P.layer) return k;
     } else if (c > cos_best) {
@@ -79,7 +77,7 @@ static inline int bw_image_face_of(SimParams P, const float4* pl, int count, flo
       best = k;
     }
   }
-  return flatness >= BW_IMAGE_FACE_FLATNESS ? -1 : best;
+  return flatness >= BW_FACE_FLATNESS ? -1 : best;
 }
 
 #endif
