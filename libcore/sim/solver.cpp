@@ -77,11 +77,12 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   P.nz = static_cast<int>(dims[2]);
   P.ncells = static_cast<int>(s.ncells);
 
-  // Refuse what cannot fit before allocating anything.
-  const std::uint64_t per_particle = 29 * sizeof(float);
+  // Refuse what cannot fit before allocating anything (the images' planes, push and
+  // weights are five float4 per particle).
+  const std::uint64_t per_particle = (29 + (p.wall_images ? 20 : 0)) * sizeof(float);
   const std::uint64_t nb_all = setup.boundary.particles.size();
   const std::uint64_t estimate = (s.capacity + kPad) * per_particle + 2 * (cells + 1) * sizeof(std::uint32_t) +
-                                 (nb_all + kPad) * 15 * sizeof(float);
+                                 (nb_all + kPad) * 16 * sizeof(float);
   const compute::DeviceInfo& dev = context.device();
   if (dev.global_memory && estimate > dev.global_memory)
     fail_input("the scene needs about {} of device memory ({} fluid particles, {} boundary particles, {} grid cells); "
