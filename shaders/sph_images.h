@@ -8,7 +8,8 @@
 // a float4 (n, d): the face's outward unit normal n, toward the fluid, and n . x = d on
 // the face, half a spacing beyond its particles. The images of a neighbour j are its
 // reflections across every non-empty set of the particle's planes (perpendicular to
-// one another: 1, 3 or 7 images), with its velocity reflected alike (a wall without
+// one another, or facing across a channel at least h wide: 1, 3 or 7 images), with
+// its velocity reflected alike (a wall without
 // friction; the faces' particles keep their friction). Boundary particles behind one
 // of the planes stand for the same wall and give way to the images.
 #ifndef BW_SPH_IMAGES_H
@@ -32,6 +33,11 @@
 // Planes whose normals' cosine exceeds this are not perpendicular: their reflections
 // do not close into a group of images, and the particle keeps the faces' particles.
 #define BW_IMAGE_PERPENDICULAR 0.02f
+// Facing planes (normals opposite, the two walls of a channel) need no images across
+// both when they stand at least h apart: those lie at least the gap away, where the
+// kernel is 0 (at 0.999 h, below 1e-9 of a neighbour's weight). Nearer, the images'
+// series does not end; the particle keeps the faces' particles.
+#define BW_IMAGE_FACING_GAP 0.999f
 
 // The planes of fluid particle i (0 to 3; planes past the count have n = 0).
 static inline int bw_image_planes(uint i, __global const float4* wp0, __global const float4* wp1,
