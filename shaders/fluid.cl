@@ -130,8 +130,9 @@ __kernel void fluid_wall_planes(SimParams P, __global const uint* start, __globa
                                 __global const float* y, __global const float* z, __global const uint* bstart,
                                 __global const float* bx, __global const float* by, __global const float* bz,
                                 __global const float* bnx, __global const float* bny, __global const float* bnz,
-                                __global const float* bflat, __global const uint* bsolid, __global float4* wp0,
-                                __global float4* wp1, __global float4* wp2) {
+                                __global const float* bflat, __global const uint* bsolid,
+                                __global const OwnerParams* owners, __global float4* wp0, __global float4* wp1,
+                                __global float4* wp2, __global uint4* wowner) {
   const uint i = get_global_id(0);
   if (i >= start[P.ncells]) return;
   const float xi = x[i], yi = y[i], zi = z[i];
@@ -141,17 +142,22 @@ __kernel void fluid_wall_planes(SimParams P, __global const uint* start, __globa
   const int x0 = max(cx - 1, 0), x1 = min(cx + 1, P.nx - 1);
   const float h2 = P.h2, same_d = BW_IMAGE_SAME_OFFSET * P.layer, spacing = 2.0f * P.layer;
   float4 pl[BW_IMAGE_PLANES] = {(float4)(0.0f), (float4)(0.0f), (float4)(0.0f)};
+#if BW_GHOST_BODIES
+  uint own[BW_IMAGE_PLANES] = {0u, 0u, 0u};  // each plane's solid, of its particle nearest to i
+  float nearest[BW_IMAGE_PLANES] = {h2, h2, h2};
+#endif
   int count = 0;
   bool ok = true;
-  // The planes: faces of static solids within h with the particle in front of them.
+  // The planes: faces within h with the particle in front of them, of solids that do
+  // not give way to the water (static, moved as told, or fixed).
   for (int gz = max(cz - 1, 0); gz <= min(cz + 1, P.nz - 1) && ok; ++gz) {
     for (int gy = max(cy - 1, 0); gy <= min(cy + 1, P.ny - 1) && ok; ++gy) {
       const int row = bw_cell_index(0, gy, gz, P.nx, P.ny);
       const uint s = bstart[row + x0], e = bstart[row + x1 + 1];
       for (uint b = s; b < e; ++b) {
         const float dx = xi - bx[b], dy = yi - by[b], dz = zi - bz[b];
-        if (dx * dx + dy * dy + dz * dz >= h2 || bsolid[b] >= P.static_owners || bflat[b] < BW_FACE_FLATNESS)
-          continue;
+        const float r2 = dx * dx + dy * dy + dz * dz;
+        if (r2 >= h2 || bw_image_gives_way(P, owners, bsolid[b]) || bflat[b] < BW_FACE_FLATNESS) continue;
         const float nx = bnx[b], ny = bny[b], nz = bnz[b];
         const float d = nx * bx[b] + ny * by[b] + nz * bz[b] + P.layer;
         if (!(nx * xi + ny * yi + nz * zi > d)) continue;  // the particle is behind this face
@@ -161,13 +167,23 @@ __kernel void fluid_wall_planes(SimParams P, __global const uint* start, __globa
         for (int k = 0; k < count; ++k) {
           if (!(pl[k].x * nx + pl[k].y * ny + pl[k].z * nz > BW_IMAGE_SAME_COS)) continue;
           known = true;
-          if (d > pl[k].w + same_d) pl[k] = (float4)(nx, ny, nz, d);
+          if (d > pl[k].w + same_d) {
+            pl[k] = (float4)(nx, ny, nz, d);
+#if BW_GHOST_BODIES
+            own[k] = bsolid[b], nearest[k] = r2;
+          } else if (!(d < pl[k].w - same_d) && r2 < nearest[k]) {
+            own[k] = bsolid[b], nearest[k] = r2;
+#endif
+          }
         }
         if (known) continue;
         if (count == BW_IMAGE_PLANES) {
           ok = false;
           break;
         }
+#if BW_GHOST_BODIES
+        own[count] = bsolid[b], nearest[count] = r2;
+#endif
         pl[count++] = (float4)(nx, ny, nz, d);
       }
     }
@@ -197,7 +213,7 @@ __kernel void fluid_wall_planes(SimParams P, __global const uint* start, __globa
         const float nx = bnx[b], ny = bny[b], nz = bnz[b];
         const bool face = bflat[b] >= BW_FACE_FLATNESS;
         const bool on = face && bw_image_face_of(P, pl, count, xb, yb, zb, nx, ny, nz, bflat[b]) >= 0;
-        if (bsolid[b] >= P.static_owners) {
+        if (bw_image_gives_way(P, owners, bsolid[b])) {
           ok = false;
         } else if (behind == 1 && !on) {
           // A face or an edge buried against another plane's solid passes (a wall block's
@@ -233,6 +249,9 @@ __kernel void fluid_wall_planes(SimParams P, __global const uint* start, __globa
   wp0[i] = pl[0];
   wp1[i] = pl[1];
   wp2[i] = pl[2];
+#if BW_GHOST_BODIES
+  wowner[i] = (uint4)(own[0], own[1], own[2], 0u);
+#endif
 }
 
 // The density of every particle, then the Tait pressure, the per-particle factors the
@@ -286,10 +305,57 @@ __kernel void fluid_wall_planes(SimParams P, __global const uint* start, __globa
       __global const float* bpsi, __global const float* bvx, __global const float* bvy,                 \
       __global const float* bvz, __global float* rho, __global float* pres, __global float* pterm,      \
       __global float* vol, __global float* phi, __global float* diffusion_rate, __global const float4* wp0,  \
-      __global const float4* wp1, __global const float4* wp2
+      __global const float4* wp1, __global const float4* wp2, __global const uint4* wowner,            \
+      __global const BodyPose* poses
 #define BW_DENSITY_ARGS \
   P, dt, start, x, y, z, vx, vy, vz, rho_state, bstart, bx, by, bz, bpsi, bvx, bvy, bvz, rho, pres, pterm, vol, phi, \
-      diffusion_rate, wp0, wp1, wp2
+      diffusion_rate, wp0, wp1, wp2, wowner, poses
+#if BW_GHOST_WALLS
+// The images' term of bw_fluid_density for the neighbours j .. j + BW_VW - 1 below row
+// end e: j's images across every set of i's planes, at x_j' and with v_j' reflected in
+// each plane's frame (the particle itself too: its own image), add the change of
+// (h - r)^3 along the step to *si. Across a moving solid's plane v' = R (v - w(x)) +
+// w(x'), w = V + W x (x - c) the solid's velocity field; w(x') = w(x) - dk W x n gives
+// v' = v - 2 (n . (v - w(x))) n - dk W x n (compiled only for scenes with bodies,
+// BW_GHOST_BODIES: the branch differs from particle to particle, and a device that
+// runs particles in lockstep pays for both sides of it).
+static inline void bw_images_change(const float4* pl, const int planes, const int* body,
+                                    __global const BodyPose* poses,
+                                    __global const float* x, __global const float* y, __global const float* z,
+                                    __global const float* vx, __global const float* vy, __global const float* vz,
+                                    const int j, const int e, const float xi, const float yi, const float zi,
+                                    const float vxi, const float vyi, const float vzi, const float h,
+                                    const float min_r2, const float dt, vfloat* si) {
+  for (int set = 1; set < (1 << planes); ++set) {
+    vfloat gx = VLOAD(x + j), gy = VLOAD(y + j), gz = VLOAD(z + j);
+    vfloat ux = VLOAD(vx + j), uy = VLOAD(vy + j), uz = VLOAD(vz + j);
+    for (int k = 0; k < planes; ++k) {
+      if (!((set >> k) & 1)) continue;
+      const vfloat dk = 2.0f * (pl[k].x * gx + pl[k].y * gy + pl[k].z * gz - pl[k].w);
+      if (BW_GHOST_BODIES && body[k] >= 0) {
+        const BodyPose B = poses[body[k]];
+        const float3 W = (float3)(B.wx, B.wy, B.wz), n = pl[k].xyz;
+        const vfloat rx = gx - B.cx, ry = gy - B.cy, rz = gz - B.cz;
+        const vfloat wn = n.x * B.vx + n.y * B.vy + n.z * B.vz + n.x * (W.y * rz - W.z * ry) +
+                          n.y * (W.z * rx - W.x * rz) + n.z * (W.x * ry - W.y * rx);
+        const vfloat uk = 2.0f * (n.x * ux + n.y * uy + n.z * uz - wn);
+        const float3 wxn = cross(W, n);
+        ux -= uk * n.x + dk * wxn.x, uy -= uk * n.y + dk * wxn.y, uz -= uk * n.z + dk * wxn.z;
+      } else {
+        const vfloat uk = 2.0f * (pl[k].x * ux + pl[k].y * uy + pl[k].z * uz);
+        ux -= uk * pl[k].x, uy -= uk * pl[k].y, uz -= uk * pl[k].z;
+      }
+      gx -= dk * pl[k].x, gy -= dk * pl[k].y, gz -= dk * pl[k].z;
+    }
+    gx = xi - gx, gy = yi - gy, gz = zi - gz;
+    ux = vxi - ux, uy = vyi - uy, uz = vzi - uz;
+    const vfloat g2 = gx * gx + gy * gy + gz * gz;
+    const vfloat d2 = dt * (dt * (ux * ux + uy * uy + uz * uz) - 2.0f * (ux * gx + uy * gy + uz * gz));
+    *si += select((vfloat)0.0f, bw_spiky_change(h, min_r2, g2, d2), VIN_ROW(j, e));
+  }
+}
+#endif
+
 inline void bw_fluid_density(BW_DENSITY_PARAMS, const uint want_rate) {
   const uint i = get_global_id(0);
   if (i >= start[P.ncells]) return;
@@ -335,6 +401,16 @@ inline void bw_fluid_density(BW_DENSITY_PARAMS, const uint want_rate) {
 #if BW_GHOST_WALLS
     float4 pl[BW_IMAGE_PLANES];
     const int planes = bw_image_planes(i, wp0, wp1, wp2, pl);
+    // The body of each plane (moved as told, or fixed; -1: a static solid's), whose
+    // pose gives its velocity field.
+    int body[BW_IMAGE_PLANES] = {-1, -1, -1};
+#if BW_GHOST_BODIES
+    {
+      const uint4 o4 = wowner[i];
+      const uint o[BW_IMAGE_PLANES] = {o4.x, o4.y, o4.z};
+      for (int k = 0; k < planes; ++k) body[k] = o[k] >= P.static_owners ? (int)(o[k] - P.static_owners) : -1;
+    }
+#endif
 #endif
 #if BW_GHOST_WALLS
     vfloat si = 0.0f;  // the images' change of sum (h - r)^3 over the step (as the boundary's)
@@ -387,28 +463,13 @@ inline void bw_fluid_density(BW_DENSITY_PARAMS, const uint want_rate) {
           sd += select((vfloat)0.0f, q * q * (vij * ir), ok);
 #endif
 #if BW_GHOST_WALLS
-          // j's images across every set of i's planes, at x_j' and with v_j' reflected (the
-          // particle itself too: its own image). Like the boundary's term (above), their
-          // change over the step is integrated exactly along it, (h - r)^3 at its end less
-          // at its start: with the rate at the step's end, water that struck a wall and
-          // left it kept density it had not lost, and the jet on the baffle gained 25% of
-          // its energy in 40 ms.
-          for (int set = 1; set < (1 << planes); ++set) {
-            vfloat gx = VLOAD(x + j), gy = VLOAD(y + j), gz = VLOAD(z + j);
-            vfloat ux = VLOAD(vx + j), uy = VLOAD(vy + j), uz = VLOAD(vz + j);
-            for (int k = 0; k < planes; ++k) {
-              if (!((set >> k) & 1)) continue;
-              const vfloat dk = 2.0f * (pl[k].x * gx + pl[k].y * gy + pl[k].z * gz - pl[k].w);
-              const vfloat uk = 2.0f * (pl[k].x * ux + pl[k].y * uy + pl[k].z * uz);
-              gx -= dk * pl[k].x, gy -= dk * pl[k].y, gz -= dk * pl[k].z;
-              ux -= uk * pl[k].x, uy -= uk * pl[k].y, uz -= uk * pl[k].z;
-            }
-            gx = xi - gx, gy = yi - gy, gz = zi - gz;
-            ux = vxi - ux, uy = vyi - uy, uz = vzi - uz;
-            const vfloat g2 = gx * gx + gy * gy + gz * gz;
-            const vfloat d2 = dt * (dt * (ux * ux + uy * uy + uz * uz) - 2.0f * (ux * gx + uy * gy + uz * gz));
-            si += select((vfloat)0.0f, bw_spiky_change(h, min_r2, g2, d2), VIN_ROW(j, e));
-          }
+          // j's images (bw_images_change). Like the boundary's term (below), their change
+          // over the step is integrated exactly along it, (h - r)^3 at its end less at its
+          // start: with the rate at the step's end, water that struck a wall and left it
+          // kept density it had not lost, and the jet on the baffle gained 25% of its
+          // energy in 40 ms.
+          bw_images_change(pl, planes, body, poses, x, y, z, vx, vy, vz, j, e, xi, yi, zi, vxi, vyi, vzi, h, min_r2,
+                           dt, &si);
 #endif
         }
         const int bs = (int)bstart[row + x0], be = (int)bstart[row + x1 + 1];

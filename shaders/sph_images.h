@@ -1,4 +1,5 @@
-// Mirror images of the fluid in place of the particles of static solids' flat faces
+// Mirror images of the fluid in place of the particles of flat faces of solids that
+// do not give way to it: static solids, solids moved as told, fixed bodies
 // (fluid.wall_pressure = "images", docs/scene.md "Walls as mirror images"): the rules
 // shared by the fluid kernels (fluid.cl), which apply the images' push and density
 // rate, and the rigid-body kernels (rigid.cl), which give their reaction to the faces'
@@ -9,7 +10,8 @@
 // the face, half a spacing beyond its particles. The images of a neighbour j are its
 // reflections across every non-empty set of the particle's planes (perpendicular to
 // one another, or facing across a channel at least h wide: 1, 3 or 7 images), with
-// its velocity reflected alike (a wall without
+// its velocity reflected alike in the frame of each plane, which moves along its
+// normal with the solid's face (a wall without
 // friction; the faces' particles keep their friction). Boundary particles behind one
 // of the planes stand for the same wall and give way to the images.
 #ifndef BW_SPH_IMAGES_H
@@ -22,6 +24,12 @@
 // the fluid's and the rigid bodies' kernels so for fluid.wall_pressure = "images").
 #ifndef BW_GHOST_WALLS
 #define BW_GHOST_WALLS 0
+#endif
+
+// 1: the scene has bodies, whose faces (moved as told, or fixed) can be mirror planes
+// that move (the solver builds the fluid's kernels so).
+#ifndef BW_GHOST_BODIES
+#define BW_GHOST_BODIES 0
 #endif
 
 // Planes held per fluid particle at most (a corner of three faces).
@@ -38,6 +46,13 @@
 // kernel is 0 (at 0.999 h, below 1e-9 of a neighbour's weight). Nearer, the images'
 // series does not end; the particle keeps the faces' particles.
 #define BW_IMAGE_FACING_GAP 0.999f
+
+// Whether a solid's particles give way to the water (a body moved by the fluid's
+// forces): those keep their particles; static solids, solids moved as told and fixed
+// bodies (no contact mass, rigid_stage.cpp upload_owners) can be mirror planes.
+static inline bool bw_image_gives_way(SimParams P, __global const OwnerParams* owners, uint owner) {
+  return owner >= P.static_owners && owners[owner].inv_mass > 0.0f;
+}
 
 // The planes of fluid particle i (0 to 3; planes past the count have n = 0).
 static inline int bw_image_planes(uint i, __global const float4* wp0, __global const float4* wp1,

@@ -152,7 +152,8 @@ struct Solver::Impl {
   Buffer diffusion_rate;  // per particle, the density diffusion's rate on its own density (1/s)
   // per particle (float4), with the images: its mirror planes, and per plane the images'
   // push along the normal and the weight of the boundary particles they replace
-  Buffer wp0, wp1, wp2, image_push, image_weight;
+  Buffer wp0, wp1, wp2, wowner, image_push, image_weight;
+  Buffer no_owners, no_poses;  // the images' tables without bodies: never read (all static)
   static constexpr int kRateEvery = 4;         // steps between the rate's computations at most
   static constexpr double kRateGrowth = 1.25;  // how much the largest rate may grow meanwhile
   bool rate_wanted = true;  // the density pass in flight computes the rate
@@ -323,12 +324,14 @@ struct Solver::Impl {
       ctx.launch(wall_fraction, n);
     }
     if (params.wall_images && n > 0) {
-      wall_planes.args(Q, start, x[f], y[f], z[f], bstart, bx, by, bz, bnx, bny, bnz, bflat, bsolid, wp0, wp1, wp2);
+      wall_planes.args(Q, start, x[f], y[f], z[f], bstart, bx, by, bz, bnx, bny, bnz, bflat, bsolid,
+                       rigid ? rigid->owners : no_owners, wp0, wp1, wp2, wowner);
       ctx.launch(wall_planes, n);
     }
     Kernel& pass = Q.continuity && rate_wanted ? density_rate : density;
     pass.args(Q, static_cast<float>(density_dt), start, x[f], y[f], z[f], vx[f], vy[f], vz[f], rho_state, bstart, bx,
-              by, bz, bpsi, bvx, bvy, bvz, rho, pres, pterm, vol, phi, diffusion_rate, wp0, wp1, wp2);
+              by, bz, bpsi, bvx, bvy, bvz, rho, pres, pterm, vol, phi, diffusion_rate, wp0, wp1, wp2, wowner,
+              rigid ? rigid->poses : no_poses);
     ctx.launch(pass, n);
     if (Q.wall_hydrostatic && nb > 0) {  // the walls' pressures, from the fluid's just found
       boundary_pressure.args(Q, nb, start, x[f], y[f], z[f], rho, pres, bx, by, bz, bpt);
