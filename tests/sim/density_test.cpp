@@ -369,30 +369,30 @@ loads = true
 
 INSTANTIATE_TEST_SUITE_P(Walls, StillWaterLoads, testing::Values("hydrostatic", "images"));
 
-// Water sliding on a flat floor without friction (fluid.mu and mu_b 0): a block
-// 0.4 x 0.2 x 0.1 m at 1 m/s along x slumps as it goes, 0.25 s. A frictionless flat
-// floor pushes only along its normal, so the floor's load along x is zero and the
-// water keeps its momentum. With the floor's particles (the hydrostatic wall) the
-// pairs' forces along the floor, which cancel at rest on the lattice, no longer do once
-// the water slides over it: the floor grips the water (docs/scene.md, "Moving
-// solids"), measured 0.66% of its momentum. With mirror images (fluid.wall_pressure =
-// "images") the force on a particle from its neighbour's image and the one on the
-// neighbour from its image cancel along the floor: measured 4e-7 of the momentum (the
-// float sums' rounding), and the floor's load along x is zero. What the water loses
-// goes to the floor either way.
-TEST(Images, WaterSlidingOnAFrictionlessFloorKeepsItsMomentum) {
-  test::TempDir dir;
+// A block of water 0.4 x 0.2 x 0.1 m on a frictionless floor slab (fluid.mu and mu_b
+// 0), 0.02 m, 0.25 s, with the floor's `wall`: sliding at 1 m/s along x on a still
+// floor, or (`floor_moves`) at rest on a floor moved as told at 1 m/s along x, whose
+// left end, 0.8 m behind the water, stays behind the water as it slumps. The water's
+// mean velocity along x at the end, the run and its summary.
+struct Slide {
+  sim::RunSummary summary;
+  RunRecord run;
+  double mean_vx = 0;
+};
+
+Slide slide_on_floor(const test::TempDir& dir, const std::string& wall, bool floor_moves) {
   constexpr double kCoarse = 0.02;
-  test::write_block(dir.file("floor.h5"), {-0.3, -0.7, -0.04}, {1.6, 0.7, 0}, kCoarse);
-  auto slide = [&](const std::string& wall) {
-    std::ofstream(dir.file(wall + ".toml")) << fmt::format(R"(
+  const double lo = floor_moves ? -0.8 : -0.3, hi = floor_moves ? 1.0 : 1.6;
+  const std::string name = wall + (floor_moves ? "-moving" : "-still");
+  test::write_block(dir.file(name + ".h5"), {lo, -0.7, -0.04}, {hi, 0.7, 0}, kCoarse);
+  std::ofstream(dir.file(name + ".toml")) << fmt::format(R"(
 spacing = {}
 [time]
 end = 0.25
 frame_rate = 20
 [domain]
-min = [-0.35, -0.75, -0.1]
-max = [1.65, 0.75, 0.3]
+min = [{}, -0.75, -0.1]
+max = [{}, 0.75, 0.3]
 [fluid]
 mu = 0
 mu_b = 0
@@ -401,81 +401,67 @@ wall_pressure = "{}"
 [[fluid.block]]
 min = [0, -0.1, 0]
 max = [0.4, 0.1, 0.1]
-velocity = [1, 0, 0]
+velocity = [{}, 0, 0]
 [[solid]]
 name = "floor"
-particles = "floor.h5"
+particles = "{}.h5"
+{}
 [output]
 loads = true
 fields = ["velocity"]
 )",
-                                                          kCoarse, wall);
-    const sim::RunSummary summary = test::run_scene(dir.file(wall + ".toml"), dir.file(wall));
-    const RunRecord run = read_run(dir.file(wall + "/run.h5"));
-    EXPECT_EQ(summary.removed, 0) << wall << ": the water stays on the floor";
-    const FrameData last = read_frame(frame_file_name(dir.file(wall + "/frames"), summary.frames - 1));
-    double mean_vx = 0;
-    for (const float v : last.vx) mean_vx += v;
-    mean_vx /= static_cast<double>(last.vx.size());
-    const double impulse = run.loads.back()[0].x() / (water_weight(run, summary) / 9.81);  // per unit momentum
-    test::figure(wall + ": the water's momentum along x lost", 1 - mean_vx);
+                                                         kCoarse, lo - 0.05, hi + 0.05, wall, floor_moves ? 0 : 1, name,
+                                                         floor_moves ? "motion = [[0, 1, 0, 0]]" : "");
+  Slide out;
+  out.summary = test::run_scene(dir.file(name + ".toml"), dir.file(name));
+  out.run = read_run(dir.file(name + "/run.h5"));
+  EXPECT_EQ(out.summary.removed, 0) << name << ": the water stays on the floor";
+  const FrameData last = read_frame(frame_file_name(dir.file(name + "/frames"), out.summary.frames - 1));
+  for (const float v : last.vx) out.mean_vx += v;
+  out.mean_vx /= static_cast<double>(last.vx.size());
+  test::figure(name + ": energy drift", out.summary.energy_drift());
+  return out;
+}
+
+// Water sliding on a flat floor without friction: the block at 1 m/s along x slumps as
+// it goes. A frictionless flat floor pushes only along its normal, so the floor's load
+// along x is zero and the water keeps its momentum. With the floor's particles (the
+// hydrostatic wall) the pairs' forces along the floor, which cancel at rest on the
+// lattice, no longer do once the water slides over it: the floor grips the water
+// (docs/scene.md, "Moving solids"), measured 0.66% of its momentum. With mirror images
+// (fluid.wall_pressure = "images") the force on a particle from its neighbour's image
+// and the one on the neighbour from its image cancel along the floor: measured 4e-7 of
+// the momentum (the float sums' rounding), and the floor's load along x is zero. What
+// the water loses goes to the floor either way.
+TEST(Images, WaterSlidingOnAFrictionlessFloorKeepsItsMomentum) {
+  test::TempDir dir;
+  auto lost = [&](const std::string& wall) {
+    const Slide s = slide_on_floor(dir, wall, false);
+    const double impulse = s.run.loads.back()[0].x() / (water_weight(s.run, s.summary) / 9.81);  // per unit momentum
+    test::figure(wall + ": the water's momentum along x lost", 1 - s.mean_vx);
     test::figure(wall + ": the floor's impulse along x over the water's momentum", impulse);
-    test::figure(wall + ": energy drift", summary.energy_drift());
-    EXPECT_NEAR(1 - mean_vx, impulse, 1e-3) << wall << ": what the water lost went to the floor";
-    return 1 - mean_vx;
+    EXPECT_NEAR(1 - s.mean_vx, impulse, 1e-3) << wall << ": what the water lost went to the floor";
+    return 1 - s.mean_vx;
   };
-  const double grip = slide("hydrostatic"), images = slide("images");
+  const double grip = lost("hydrostatic"), images = lost("images");
   EXPECT_GT(grip, 0.003) << "the floor's particles grip sliding water";
   EXPECT_LT(std::abs(images), 0.1 * grip) << "the images do not";
 }
 
 // The same from the floor's side: a floor moved as told (`motion`) slides at 1 m/s
-// under a block of water at rest, without friction. A frictionless flat floor pushes
-// only along its normal, whether it moves along itself or not, so the water stays at
-// rest along x. Its particles grip the water and drag it along (measured: 0.66% of
-// the floor's speed in 0.25 s, as the sliding water above loses); its images, reflected
-// in the moving floor's frame, do not (measured: 4e-7).
+// under the block at rest. A frictionless flat floor pushes only along its normal,
+// whether it moves along itself or not, so the water stays at rest along x. Its
+// particles grip the water and drag it along (measured: 0.66% of the floor's speed in
+// 0.25 s, as the sliding water above loses); its images, reflected in the moving
+// floor's frame, do not (measured: 7e-7).
 TEST(Images, AFloorSlidingUnderStillWaterWithoutFrictionLeavesItAtRest) {
   test::TempDir dir;
-  constexpr double kCoarse = 0.02;
-  // Its left end, 0.8 m behind the water, stays behind the slumping water as it moves.
-  test::write_block(dir.file("floor.h5"), {-0.8, -0.7, -0.04}, {1.0, 0.7, 0}, kCoarse);
-  auto drag = [&](const std::string& wall) {
-    std::ofstream(dir.file(wall + ".toml")) << fmt::format(R"(
-spacing = {}
-[time]
-end = 0.25
-frame_rate = 20
-[domain]
-min = [-0.85, -0.75, -0.1]
-max = [1.35, 0.75, 0.3]
-[fluid]
-mu = 0
-mu_b = 0
-c0 = 20
-wall_pressure = "{}"
-[[fluid.block]]
-min = [0, -0.1, 0]
-max = [0.4, 0.1, 0.1]
-[[solid]]
-name = "floor"
-particles = "floor.h5"
-motion = [[0, 1, 0, 0]]
-[output]
-fields = ["velocity"]
-)",
-                                                          kCoarse, wall);
-    const sim::RunSummary summary = test::run_scene(dir.file(wall + ".toml"), dir.file(wall));
-    EXPECT_EQ(summary.removed, 0) << wall << ": the water stays on the floor";
-    const FrameData last = read_frame(frame_file_name(dir.file(wall + "/frames"), summary.frames - 1));
-    double mean_vx = 0;
-    for (const float v : last.vx) mean_vx += v;
-    mean_vx /= static_cast<double>(last.vx.size());
-    test::figure(wall + ": the water's speed along x over the floor's", mean_vx);
-    test::figure(wall + ": energy drift", summary.energy_drift());
-    return mean_vx;
+  auto dragged = [&](const std::string& wall) {
+    const double v = slide_on_floor(dir, wall, true).mean_vx;
+    test::figure(wall + ": the water's speed along x over the floor's", v);
+    return v;
   };
-  const double grip = drag("hydrostatic"), images = drag("images");
+  const double grip = dragged("hydrostatic"), images = dragged("images");
   EXPECT_GT(grip, 0.003) << "the floor's particles drag the water along";
   EXPECT_LT(std::abs(images), 0.1 * grip) << "the moving floor's images do not";
 }
