@@ -125,7 +125,10 @@ std::vector<BodyVoxels> body_voxels(const RunRecord& run, const scene::Scene& sc
   }
   for (std::size_t b = 0; b < out.size(); ++b) {
     if (!known[b]) fail_input("{}: body {} ('{}') has no voxels from its solid or a fracture", where, b, run.bodies[b].name);
-    if (static_cast<std::int64_t>(out[b].piece.size()) != run.bodies[b].voxels)
+    // A solid moved as told records no voxels (its mass is nominal); its sampled ones
+    // still say where it is solid.
+    const bool told = out[b].solid->moving() && run.bodies[b].voxels == 0;
+    if (!told && static_cast<std::int64_t>(out[b].piece.size()) != run.bodies[b].voxels)
       fail_input("{}: body {} ('{}') has {} voxels in the run file, {} rebuilt from its solid and the fractures", where,
                  b, run.bodies[b].name, run.bodies[b].voxels, out[b].piece.size());
     out[b].reference_center = run.bodies[b].reference_center;
@@ -289,7 +292,7 @@ StabilityReport check_stability(const std::string& run_dir, const StabilityLimit
   std::vector<Aabb> boxes;
   for (const scene::Solid& solid : scene.solids) {
     TriMesh m;
-    if (!solid.body()) {
+    if (!solid.body() && !solid.moving()) {  // bodies and solids moved as told: by their voxels, below
       m = read_particles(solid.particles).mesh;
       for (Vec3d& v : m.vertices) v = solid.to_world(v);
     }
