@@ -131,8 +131,7 @@ __kernel void fluid_wall_planes(SimParams P, __global const uint* start, __globa
                                 __global const float* bx, __global const float* by, __global const float* bz,
                                 __global const float* bnx, __global const float* bny, __global const float* bnz,
                                 __global const float* bflat, __global const uint* bsolid,
-                                __global const OwnerParams* owners, __global float4* wp0, __global float4* wp1,
-                                __global float4* wp2, __global uint4* wowner) {
+                                __global const OwnerParams* owners, __global uint4* wplane, __global uint4* wowner) {
   const uint i = get_global_id(0);
   if (i >= start[P.ncells]) return;
   const float xi = x[i], yi = y[i], zi = z[i];
@@ -142,6 +141,7 @@ __kernel void fluid_wall_planes(SimParams P, __global const uint* start, __globa
   const int x0 = max(cx - 1, 0), x1 = min(cx + 1, P.nx - 1);
   const float h2 = P.h2, same_d = BW_IMAGE_SAME_OFFSET * P.layer, spacing = 2.0f * P.layer;
   float4 pl[BW_IMAGE_PLANES] = {(float4)(0.0f), (float4)(0.0f), (float4)(0.0f)};
+  uint at[BW_IMAGE_PLANES] = {BW_NO_PLANE, BW_NO_PLANE, BW_NO_PLANE};  // each plane's boundary particle
 #if BW_GHOST_BODIES
   uint own[BW_IMAGE_PLANES] = {0u, 0u, 0u};  // each plane's solid, of its particle nearest to i
   float nearest[BW_IMAGE_PLANES] = {h2, h2, h2};
@@ -158,8 +158,8 @@ __kernel void fluid_wall_planes(SimParams P, __global const uint* start, __globa
         const float dx = xi - bx[b], dy = yi - by[b], dz = zi - bz[b];
         const float r2 = dx * dx + dy * dy + dz * dz;
         if (r2 >= h2 || bw_image_gives_way(P, owners, bsolid[b]) || bflat[b] < BW_FACE_FLATNESS) continue;
-        const float nx = bnx[b], ny = bny[b], nz = bnz[b];
-        const float d = nx * bx[b] + ny * by[b] + nz * bz[b] + P.layer;
+        const float4 face = bw_image_plane(P, b, bx, by, bz, bnx, bny, bnz);
+        const float nx = face.x, ny = face.y, nz = face.z, d = face.w;
         if (!(nx * xi + ny * yi + nz * zi > d)) continue;  // the particle is behind this face
         // Of parallel faces the particle is in front of (a part thinner than h, seen
         // through), the nearest is the wall; the farther one's particles lie behind it.
@@ -168,7 +168,8 @@ __kernel void fluid_wall_planes(SimParams P, __global const uint* start, __globa
           if (!(pl[k].x * nx + pl[k].y * ny + pl[k].z * nz > BW_IMAGE_SAME_COS)) continue;
           known = true;
           if (d > pl[k].w + same_d) {
-            pl[k] = (float4)(nx, ny, nz, d);
+            pl[k] = face;
+            at[k] = b;
 #if BW_GHOST_BODIES
             own[k] = bsolid[b], nearest[k] = r2;
           } else if (!(d < pl[k].w - same_d) && r2 < nearest[k]) {
@@ -184,7 +185,8 @@ __kernel void fluid_wall_planes(SimParams P, __global const uint* start, __globa
 #if BW_GHOST_BODIES
         own[count] = bsolid[b], nearest[count] = r2;
 #endif
-        pl[count++] = (float4)(nx, ny, nz, d);
+        at[count] = b;
+        pl[count++] = face;
       }
     }
   }
@@ -245,10 +247,7 @@ __kernel void fluid_wall_planes(SimParams P, __global const uint* start, __globa
       }
     }
   }
-  if (!ok) pl[0] = pl[1] = pl[2] = (float4)(0.0f);
-  wp0[i] = pl[0];
-  wp1[i] = pl[1];
-  wp2[i] = pl[2];
+  wplane[i] = ok ? (uint4)(at[0], at[1], at[2], 0u) : (uint4)(BW_NO_PLANE, BW_NO_PLANE, BW_NO_PLANE, 0u);
 #if BW_GHOST_BODIES
   wowner[i] = (uint4)(own[0], own[1], own[2], 0u);
 #endif
@@ -304,12 +303,12 @@ __kernel void fluid_wall_planes(SimParams P, __global const uint* start, __globa
       __global const float* bx, __global const float* by, __global const float* bz,                    \
       __global const float* bpsi, __global const float* bvx, __global const float* bvy,                 \
       __global const float* bvz, __global float* rho, __global float* pres, __global float* pterm,      \
-      __global float* vol, __global float* phi, __global float* diffusion_rate, __global const float4* wp0,  \
-      __global const float4* wp1, __global const float4* wp2, __global const uint4* wowner,            \
-      __global const BodyPose* poses
+      __global float* vol, __global float* phi, __global float* diffusion_rate, __global const float* bnx, \
+      __global const float* bny, __global const float* bnz, __global const uint4* wplane,               \
+      __global const uint4* wowner, __global const BodyPose* poses
 #define BW_DENSITY_ARGS \
   P, dt, start, x, y, z, vx, vy, vz, rho_state, bstart, bx, by, bz, bpsi, bvx, bvy, bvz, rho, pres, pterm, vol, phi, \
-      diffusion_rate, wp0, wp1, wp2, wowner, poses
+      diffusion_rate, bnx, bny, bnz, wplane, wowner, poses
 #if BW_GHOST_WALLS
 // The images' term of bw_fluid_density for the neighbours j .. j + BW_VW - 1 below row
 // end e: j's images across every set of i's planes, at x_j' and with v_j' reflected in
@@ -400,7 +399,7 @@ inline void bw_fluid_density(BW_DENSITY_PARAMS, const uint want_rate) {
     const float eta2 = BW_DIFFUSION_ETA2 * h2;
 #if BW_GHOST_WALLS
     float4 pl[BW_IMAGE_PLANES];
-    const int planes = bw_image_planes(i, wp0, wp1, wp2, pl);
+    const int planes = bw_image_planes(P, i, wplane, bx, by, bz, bnx, bny, bnz, pl);
     // The body of each plane (moved as told, or fixed; -1: a static solid's), whose
     // pose gives its velocity field.
     int body[BW_IMAGE_PLANES] = {-1, -1, -1};
@@ -589,9 +588,8 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
                            __global const float* bx, __global const float* by, __global const float* bz,
                            __global const float* bpsi, __global const float* bpt, __global const float* bvx,
                            __global const float* bvy, __global const float* bvz, __global float* ax,
-                           __global float* ay, __global float* az, __global const float4* wp0,
-                           __global const float4* wp1, __global const float4* wp2, __global float4* image_push,
-                           __global float4* image_weight, __global const float* bnx, __global const float* bny,
+                           __global float* ay, __global float* az, __global const uint4* wplane,
+                           __global float4* image_share, __global const float* bnx, __global const float* bny,
                            __global const float* bnz, __global const float* bflat) {
   const uint i = get_global_id(0);
   if (i >= start[P.ncells]) return;
@@ -614,7 +612,7 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
   vfloat sx = 0.0f, sy = 0.0f, sz = 0.0f;  // the acceleration, but gravity
 #if BW_GHOST_WALLS
   float4 pl[BW_IMAGE_PLANES];
-  const int planes = bw_image_planes(i, wp0, wp1, wp2, pl);
+  const int planes = bw_image_planes(P, i, wplane, bx, by, bz, bnx, bny, bnz, pl);
   // per plane: the images' push along its normal (m/s^2), and the weight sum_b Psi_b
   // (h - r)^3 of the boundary particles it replaces (rigid.cl shares the push by it)
   vfloat gp0 = 0.0f, gp1 = 0.0f, gp2 = 0.0f;
@@ -702,8 +700,12 @@ __kernel void fluid_forces(SimParams P, __global const uint* start, __global con
   ay[i] = VSUM(sy) + P.gy;
   az[i] = VSUM(sz) + P.gz;
 #if BW_GHOST_WALLS
-  image_push[i] = (float4)(VSUM(gp0), VSUM(gp1), VSUM(gp2), 0.0f);
-  image_weight[i] = (float4)(gw[0], gw[1], gw[2], 0.0f);
+  // Per plane the push per unit of the replaced particles' weight: rigid.cl gives each
+  // its share, Psi_b (h - r)^3 times this.
+  const float push[BW_IMAGE_PLANES] = {VSUM(gp0), VSUM(gp1), VSUM(gp2)};
+  float share[BW_IMAGE_PLANES];
+  for (int k = 0; k < BW_IMAGE_PLANES; ++k) share[k] = gw[k] > 0.0f ? push[k] / gw[k] : 0.0f;
+  image_share[i] = (float4)(share[0], share[1], share[2], 0.0f);
 #endif
 }
 

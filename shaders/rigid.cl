@@ -191,9 +191,8 @@ __kernel void boundary_forces(SimParams P, ContactParams C, uint first, uint cou
                               __global const uint* rank, __global const uint* order, __global const OwnerParams* owners,
                               __global const uint* wet_in, __global float* fx, __global float* fy, __global float* fz,
                               __global float* tx, __global float* ty, __global float* tz, __global float* touching,
-                              __global uint* wet_out, __global const float4* wp0, __global const float4* wp1,
-                              __global const float4* wp2, __global const float4* image_push,
-                              __global const float4* image_weight) {
+                              __global uint* wet_out, __global const uint4* wplane,
+                              __global const float4* image_share) {
   const uint g = get_global_id(0);
   if (g >= count) return;
   const uint k = first + g;
@@ -245,14 +244,13 @@ __kernel void boundary_forces(SimParams P, ContactParams C, uint first, uint cou
           // Behind one of j's mirror planes b gives way to the images (fluid_forces): it
           // takes its share, by Psi_b W, of their push along that plane's normal.
           float4 pl[BW_IMAGE_PLANES];
-          const int planes = bw_image_planes(j, wp0, wp1, wp2, pl);
+          const int planes = bw_image_planes(P, j, wplane, bx, by, bz, bnx, bny, bnz, pl);
           if (planes > 0 && bw_image_replaced(pl, planes, xb, yb, zb)) {
             const int face = bw_image_face_of(P, pl, planes, xb, yb, zb, nbx, nby, nbz, bflat[i]);
             const int k = max(face, 0);
-            const float4 push = image_push[j], weight = image_weight[j];
-            const float pk = k == 0 ? push.x : (k == 1 ? push.y : push.z);
-            const float wk = k == 0 ? weight.x : (k == 1 ? weight.y : weight.z);
-            const float share = face >= 0 && wk > 0.0f ? psi * q * q * q / wk * pk : 0.0f;
+            const float4 per_weight = image_share[j];
+            const float sk = k == 0 ? per_weight.x : (k == 1 ? per_weight.y : per_weight.z);
+            const float share = face >= 0 ? psi * q * q * q * sk : 0.0f;
             sx += share * pl[k].x;
             sy += share * pl[k].y;
             sz += share * pl[k].z;

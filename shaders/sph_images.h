@@ -6,8 +6,9 @@
 // particles for the sensors and the loads (OpenCL C only).
 //
 // A fluid particle near such faces holds up to three planes (fluid_wall_planes), each
-// a float4 (n, d): the face's outward unit normal n, toward the fluid, and n . x = d on
-// the face, half a spacing beyond its particles. The images of a neighbour j are its
+// as the boundary particle it was found at (a uint: 4 bytes where the plane is 16),
+// from which every reader takes the same float4 (n, d): the face's outward unit normal
+// n, toward the fluid, and n . x = d on the face, half a spacing beyond its particles. The images of a neighbour j are its
 // reflections across every non-empty set of the particle's planes (perpendicular to
 // one another, or facing across a channel at least h wide: 1, 3 or 7 images), with
 // its velocity reflected alike in the frame of each plane, which moves along its
@@ -54,14 +55,30 @@ static inline bool bw_image_gives_way(SimParams P, __global const OwnerParams* o
   return owner >= P.static_owners && owners[owner].inv_mass > 0.0f;
 }
 
-// The planes of fluid particle i (0 to 3; planes past the count have n = 0).
-static inline int bw_image_planes(uint i, __global const float4* wp0, __global const float4* wp1,
-                                  __global const float4* wp2, float4* pl) {
-  pl[0] = wp0[i];
-  pl[1] = wp1[i];
-  pl[2] = wp2[i];
+// A plane's slot that holds none.
+#define BW_NO_PLANE 0xffffffffu
+
+// The plane of the face that boundary particle b lies half a spacing behind: (n_b, n_b .
+// x_b + P.layer). The planes' pass and every reader take it from here, with the same bits.
+static inline float4 bw_image_plane(SimParams P, uint b, __global const float* bx, __global const float* by,
+                                    __global const float* bz, __global const float* bnx, __global const float* bny,
+                                    __global const float* bnz) {
+  const float nx = bnx[b], ny = bny[b], nz = bnz[b];
+  return (float4)(nx, ny, nz, nx * bx[b] + ny * by[b] + nz * bz[b] + P.layer);
+}
+
+// The planes of fluid particle i (0 to 3, first; those past the count have n = 0), from
+// the boundary particles the planes' pass found them at (wplane, in this step's order).
+static inline int bw_image_planes(SimParams P, uint i, __global const uint4* wplane, __global const float* bx,
+                                  __global const float* by, __global const float* bz, __global const float* bnx,
+                                  __global const float* bny, __global const float* bnz, float4* pl) {
+  const uint4 w = wplane[i];
+  const uint b[BW_IMAGE_PLANES] = {w.x, w.y, w.z};
   int count = 0;
-  for (int k = 0; k < BW_IMAGE_PLANES; ++k) count += (pl[k].x != 0.0f || pl[k].y != 0.0f || pl[k].z != 0.0f) ? 1 : 0;
+  for (int k = 0; k < BW_IMAGE_PLANES; ++k) {
+    pl[k] = (float4)(0.0f);
+    if (b[k] != BW_NO_PLANE) pl[count++] = bw_image_plane(P, b[k], bx, by, bz, bnx, bny, bnz);
+  }
   return count;
 }
 

@@ -385,7 +385,7 @@ void Solver::Impl::rigid_forces(double dt) {
   r.forces.args(P, C, first, count, static_cast<float>(dt), start, x[f], y[f], z[f], vx[f], vy[f], vz[f], ax, ay, az,
                 rho, pterm, phi, hold[f], bstart, bx, by, bz, bvx, bvy, bvz, bnx, bny, bnz, bflat, bpsi, bpt, bsolid,
                 one_sided, r.rank, r.order, r.owners, r.wet[static_cast<std::size_t>(w)], r.fx, r.fy, r.fz, r.tx, r.ty, r.tz,
-                r.touching, r.wet[static_cast<std::size_t>(1 - w)], wp0, wp1, wp2, image_push, image_weight);
+                r.touching, r.wet[static_cast<std::size_t>(1 - w)], wplane, image_share);
   ctx.launch(r.forces, count);
   if (dt >= 0) r.wet_read = 1 - w;
   sum_blocks(dt);

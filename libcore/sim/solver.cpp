@@ -77,10 +77,10 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   P.nz = static_cast<int>(dims[2]);
   P.ncells = static_cast<int>(s.ncells);
 
-  // Refuse what cannot fit before allocating anything (the images' planes, push and
-  // weights are five float4 per particle, and with bodies the planes' solids a sixth).
+  // Refuse what cannot fit before allocating anything (the images' planes and push
+  // are two 16-byte vectors per particle, and with bodies the planes' solids a third).
   const std::uint64_t per_particle =
-      (29 + (p.wall_images ? (setup.bodies.empty() ? 20 : 24) : 0)) * sizeof(float);
+      (29 + (p.wall_images ? (setup.bodies.empty() ? 8 : 12) : 0)) * sizeof(float);
   const std::uint64_t nb_all = setup.boundary.particles.size();
   const std::uint64_t estimate = (s.capacity + kPad) * per_particle + 2 * (cells + 1) * sizeof(std::uint32_t) +
                                  (nb_all + kPad) * 16 * sizeof(float);
@@ -149,15 +149,12 @@ Solver::Solver(const Setup& setup, compute::Context& context)
   {
     // Without the images one element each: the kernels take them, never read them.
     const std::size_t images = p.wall_images ? cap + kPad : 1;
-    s.wp0 = context.buffer(images * 4 * sizeof(float), "fluid mirror plane 0");
-    s.wp1 = context.buffer(images * 4 * sizeof(float), "fluid mirror plane 1");
-    s.wp2 = context.buffer(images * 4 * sizeof(float), "fluid mirror plane 2");
+    s.wplane = context.buffer(images * 4 * sizeof(std::uint32_t), "fluid mirror planes");
     const std::size_t moving_images = p.wall_images && !setup.bodies.empty() ? cap + kPad : 1;
     s.wowner = context.buffer(moving_images * 4 * sizeof(std::uint32_t), "fluid mirror planes' solids");
     s.no_owners = context.buffer(sizeof(OwnerParams), "no owners");
     s.no_poses = context.buffer(sizeof(BodyPose), "no poses");
-    s.image_push = context.buffer(images * 4 * sizeof(float), "fluid images' push");
-    s.image_weight = context.buffer(images * 4 * sizeof(float), "fluid images' replaced weight");
+    s.image_share = context.buffer(images * 4 * sizeof(float), "fluid images' push per replaced weight");
   }
   s.ax = s.floats(cap, "fluid ax");
   s.ay = s.floats(cap, "fluid ay");
@@ -453,7 +450,7 @@ std::uint64_t Solver::device_bytes() const {
     total += s.x[k].bytes() + s.y[k].bytes() + s.z[k].bytes() + s.vx[k].bytes() + s.vy[k].bytes() + s.vz[k].bytes() +
              s.id[k].bytes() + s.hold[k].bytes();
   for (const Buffer* b : {&s.keys, &s.values, &s.keys_tmp, &s.values_tmp, &s.rho, &s.pres, &s.pterm, &s.vol, &s.phi, &s.diffusion_rate, &s.ax,
-                          &s.ay, &s.az, &s.rho_state, &s.start, &s.bx, &s.by, &s.bz, &s.bpsi, &s.bpt, &s.bvx, &s.bvy, &s.bvz, &s.bnx, &s.bny, &s.bnz, &s.bsolid, &s.wp0, &s.wp1, &s.wp2, &s.wowner, &s.image_push, &s.image_weight,
+                          &s.ay, &s.az, &s.rho_state, &s.start, &s.bx, &s.by, &s.bz, &s.bpsi, &s.bpt, &s.bvx, &s.bvy, &s.bvz, &s.bnx, &s.bny, &s.bnz, &s.bsolid, &s.wplane, &s.wowner, &s.image_share,
                           &s.bstart, &s.step_out, &s.frame_out, &s.ex, &s.ey, &s.ez, &s.emitter_table})
     total += b->bytes();
   return total + s.sort->scratch_bytes() + s.rigid_bytes() + s.bflat.bytes() + s.fracture_bytes();

@@ -150,9 +150,10 @@ struct Solver::Impl {
   // at the start of the step, from which fluid_density integrates the step).
   Buffer rho, rho_state, pres, pterm, vol, phi, ax, ay, az, start;
   Buffer diffusion_rate;  // per particle, the density diffusion's rate on its own density (1/s)
-  // per particle (float4), with the images: its mirror planes, and per plane the images'
-  // push along the normal and the weight of the boundary particles they replace
-  Buffer wp0, wp1, wp2, wowner, image_push, image_weight;
+  // per particle, with the images: its mirror planes (uint4, the boundary particles they
+  // were found at; with bodies also their solids), and per plane the images' push along
+  // the normal per unit of the weight of the boundary particles they replace (float4)
+  Buffer wplane, wowner, image_share;
   Buffer no_owners, no_poses;  // the images' tables without bodies: never read (all static)
   static constexpr int kRateEvery = 4;         // steps between the rate's computations at most
   static constexpr double kRateGrowth = 1.25;  // how much the largest rate may grow meanwhile
@@ -325,12 +326,12 @@ struct Solver::Impl {
     }
     if (params.wall_images && n > 0) {
       wall_planes.args(Q, start, x[f], y[f], z[f], bstart, bx, by, bz, bnx, bny, bnz, bflat, bsolid,
-                       rigid ? rigid->owners : no_owners, wp0, wp1, wp2, wowner);
+                       rigid ? rigid->owners : no_owners, wplane, wowner);
       ctx.launch(wall_planes, n);
     }
     Kernel& pass = Q.continuity && rate_wanted ? density_rate : density;
     pass.args(Q, static_cast<float>(density_dt), start, x[f], y[f], z[f], vx[f], vy[f], vz[f], rho_state, bstart, bx,
-              by, bz, bpsi, bvx, bvy, bvz, rho, pres, pterm, vol, phi, diffusion_rate, wp0, wp1, wp2, wowner,
+              by, bz, bpsi, bvx, bvy, bvz, rho, pres, pterm, vol, phi, diffusion_rate, bnx, bny, bnz, wplane, wowner,
               rigid ? rigid->poses : no_poses);
     ctx.launch(pass, n);
     if (Q.wall_hydrostatic && nb > 0) {  // the walls' pressures, from the fluid's just found
@@ -342,7 +343,7 @@ struct Solver::Impl {
   void launch_forces() {
     const int f = front;
     forces.args(P, start, x[f], y[f], z[f], vx[f], vy[f], vz[f], rho, pterm, vol, bstart, bx, by, bz, bpsi, bpt, bvx,
-                bvy, bvz, ax, ay, az, wp0, wp1, wp2, image_push, image_weight, bnx, bny, bnz, bflat);
+                bvy, bvz, ax, ay, az, wplane, image_share, bnx, bny, bnz, bflat);
     ctx.launch(forces, n);
   }
 
