@@ -380,10 +380,11 @@ void read_fluid(Reader& top, Scene& s) {
       r.fail("diffusion", "density diffusion needs fluid.density = \"continuity\"; set it to 0 with \"summation\"");
   }
   // The wall follows the density scheme unless the scene names one: the summation has only
-  // the mirrored wall.
-  f.wall_pressure = f.density == DensityScheme::continuity ? WallPressure::hydrostatic : WallPressure::mirrored;
+  // the mirrored wall; the continuity equation mirrors the water in flat faces (docs/scene.md,
+  // "Walls as mirror images": water slides along them without the particles' grip).
+  f.wall_pressure = f.density == DensityScheme::continuity ? WallPressure::images : WallPressure::mirrored;
   if (r.has("wall_pressure")) {
-    const std::string wall = r.string("wall_pressure", "hydrostatic");
+    const std::string wall = r.string("wall_pressure", "images");
     if (wall == "hydrostatic") f.wall_pressure = WallPressure::hydrostatic;
     else if (wall == "mirrored") f.wall_pressure = WallPressure::mirrored;
     else if (wall == "images") f.wall_pressure = WallPressure::images;

@@ -52,7 +52,7 @@ struct FluidSettings {
   std::int64_t max_particles = 0;  // MFP; 0 = what the blocks and emitters need
   DensityScheme density = DensityScheme::continuity;
   double diffusion = 0.1;      // delta of the density diffusion (continuity only); 0: none
-  WallPressure wall_pressure = WallPressure::hydrostatic;  // continuity only; summation: mirrored
+  WallPressure wall_pressure = WallPressure::images;  // continuity only; summation: mirrored
 };
 
 // A box filled with fluid particles on a cubic lattice of the scene's spacing:

@@ -78,7 +78,7 @@ TEST(Scene, MinimalSceneHasDocumentedDefaults) {
   EXPECT_EQ(s.fluid.max_particles, 0);
   EXPECT_EQ(s.fluid.density, bw::scene::DensityScheme::continuity);
   EXPECT_DOUBLE_EQ(s.fluid.diffusion, 0.1) << "delta of the density diffusion, on by default";
-  EXPECT_EQ(s.fluid.wall_pressure, bw::scene::WallPressure::hydrostatic);
+  EXPECT_EQ(s.fluid.wall_pressure, bw::scene::WallPressure::images);
   EXPECT_FALSE(s.loads);
   ASSERT_EQ(s.blocks.size(), 1u);
   EXPECT_TRUE(s.fields.velocity);
@@ -208,13 +208,15 @@ TEST(Scene, DensitySchemeAndLoads) {
   expect_error(f, kMinimal + "[fluid]\ndensity = \"continuity\"\ndiffusion = 2\n", "fluid.diffusion: 2 must be between 0");
   expect_error(f, kMinimal + "[fluid]\ndensity = \"summation\"\ndiffusion = 0.1\n",
                "fluid.diffusion: density diffusion needs fluid.density = \"continuity\"");
-  EXPECT_EQ(s.fluid.wall_pressure, bw::scene::WallPressure::hydrostatic) << "the continuity's default wall";
+  EXPECT_EQ(s.fluid.wall_pressure, bw::scene::WallPressure::images) << "the continuity's default wall";
   const Scene m = load_scene(f.write(kMinimal + "[fluid]\ndensity = \"summation\"\n"));
   EXPECT_EQ(m.fluid.wall_pressure, bw::scene::WallPressure::mirrored) << "the summation's only wall";
   const Scene w = load_scene(f.write(kMinimal + "[fluid]\nwall_pressure = \"mirrored\"\n"));
   EXPECT_EQ(w.fluid.wall_pressure, bw::scene::WallPressure::mirrored);
   const Scene g = load_scene(f.write(kMinimal + "[fluid]\nwall_pressure = \"images\"\n"));
   EXPECT_EQ(g.fluid.wall_pressure, bw::scene::WallPressure::images);
+  const Scene p = load_scene(f.write(kMinimal + "[fluid]\nwall_pressure = \"hydrostatic\"\n"));
+  EXPECT_EQ(p.fluid.wall_pressure, bw::scene::WallPressure::hydrostatic) << "every face a wall of particles";
   expect_error(f, kMinimal + "[fluid]\ndensity = \"summation\"\nwall_pressure = \"images\"\n",
                "fluid.wall_pressure: the images wall pressure needs fluid.density = \"continuity\"");
   expect_error(f, kMinimal + "[fluid]\nwall_pressure = \"adami\"\n", "fluid.wall_pressure: \"adami\" is not a wall pressure");
