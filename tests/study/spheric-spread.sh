@@ -5,7 +5,8 @@
 # orders, as another CPU's SIMD width or a GPU's would. An impact is chaotic at the
 # particle scale, so a peak or a sample-to-sample noise that one run prints is one
 # draw; the spread says how far another machine's run may read from it, and a target
-# is met only when the whole range meets it.
+# is met only when the whole range meets it. One report gives that run's figures
+# (its range is itself), so one width's draw prints the same table.
 #
 # From each run's report (spheric-report.sh's PREFIX.csv, one row per sensor), per
 # sensor and figure (rise error, peak error, mean error over 0.45-0.55 s, noise, the
@@ -13,11 +14,11 @@
 # largest value. Writes PREFIX.csv (one row per sensor) and PREFIX.md (a Markdown
 # table).
 #
-#   spheric-spread.sh PREFIX report.csv report.csv [...]
+#   spheric-spread.sh PREFIX report.csv [report.csv ...]
 set -euo pipefail
 
 die() { echo "spheric-spread: $*" >&2; exit 2; }
-[[ $# -ge 3 ]] || die "usage: spheric-spread.sh PREFIX report.csv report.csv [...] (two reports or more)"
+[[ $# -ge 2 ]] || die "usage: spheric-spread.sh PREFIX report.csv [report.csv ...] (one report or more)"
 prefix=$1
 shift
 for f in "$@"; do [[ -s $f ]] || die "$f: missing or empty (a report of spheric-report.sh)"; done

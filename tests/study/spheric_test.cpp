@@ -204,7 +204,7 @@ TEST(Spheric, TheReportHasNoMeanWhereTheRunStopsBeforeItsWindowEnds) {
 }
 
 // spheric-spread.sh: each figure's mean and range over the reports of several runs
-// (Makefile.scenes spheric2-spread); two reports as spheric-report.sh writes them.
+// (Makefile.scenes spheric2-spread); reports as spheric-report.sh writes them.
 TEST(Spheric, TheSpreadGivesEachFiguresMeanAndRangeOverTheRuns) {
   test::TempDir dir;
   const std::string header =
@@ -233,9 +233,13 @@ TEST(Spheric, TheSpreadGivesEachFiguresMeanAndRangeOverTheRuns) {
   EXPECT_NE(r.out.find("peak of the 20 ms mean, error |"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("| -5% (-11 to +2) |"), std::string::npos) << r.out;
 
-  // One report is no spread; a report without a sensor of the others, or a file that
-  // is no report, is refused.
-  EXPECT_EQ(test::run(spread + dir.file("a.csv")).exit_code, 2);
+  // One report is its own range (spheric2-spread at one width); no report, a report
+  // without a sensor of the others, or a file that is no report, is refused.
+  const auto one = test::run(spread + dir.file("a.csv"));
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_EQ(read_csv(dir.file("spread.csv")).at("runs").at(0), "1");
+  EXPECT_NE(one.out.find("| P1 | 1 | +22.3 (+22.3 to +22.3) | +145% (+145 to +145) |"), std::string::npos) << one.out;
+  EXPECT_EQ(test::run(kSource + "/tests/study/spheric-spread.sh " + dir.file("spread")).exit_code, 2);
   std::ofstream(dir.file("c.csv"))
       << header << "P1,0.02,0.41625,0.394,22.3,27.4,0.441,11.2,1.452,6.46,6.76,-0.044,1.98,0.33,0.013,0.02,10.02,9.86,0.016\n";
   const auto missing = test::run(spread + dir.file("a.csv") + " " + dir.file("c.csv"));
