@@ -127,6 +127,12 @@ double CheckpointHeader::value(const std::string& name) const {
   fail_input("checkpoint: no run value '{}'", name);
 }
 
+double CheckpointHeader::value_or(const std::string& name, double fallback) const {
+  for (const auto& [k, v] : run_values)
+    if (k == name) return v;
+  return fallback;
+}
+
 std::string device_identity(const compute::DeviceInfo& device) {
   return fmt::format("{}, {} compute units, driver {}", device.label(), device.compute_units, device.driver);
 }

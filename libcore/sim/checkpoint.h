@@ -47,6 +47,8 @@ struct CheckpointHeader {
   std::vector<std::vector<Vec3d>> loads;  // the run file's /loads rows (with [output] loads)
 
   double value(const std::string& name) const;
+  // The same, or `fallback` where the checkpoint (of an earlier version) has none.
+  double value_or(const std::string& name, double fallback) const;
 };
 
 // What a run's results depend on of its device: the label, the compute units (the

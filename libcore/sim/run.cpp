@@ -309,7 +309,9 @@ RunSummary Simulation::run() {
             {"removed", static_cast<double>(sum.removed)},
             {"previous_energy", previous_energy},
             {"mean_error_sum", mean_error_sum},
-            {"boundary_start", static_cast<double>(sum.boundary)}};
+            {"boundary_start", static_cast<double>(sum.boundary)},
+            {"images_near", static_cast<double>(sum.images_near)},
+            {"images_imaged", static_cast<double>(sum.images_imaged)}};
   };
   if (s.resuming) {
     const CheckpointHeader& h = s.resume;
@@ -345,6 +347,8 @@ RunSummary Simulation::run() {
     for (auto& [name, value] : record.parameters)
       if (name == "boundary_particles") value = h.value("boundary_start");
     sum.boundary = static_cast<std::int64_t>(h.value("boundary_start"));
+    sum.images_near = static_cast<std::int64_t>(h.value_or("images_near", -1));
+    sum.images_imaged = static_cast<std::int64_t>(h.value_or("images_imaged", -1));
   }
   auto write_checkpoint_now = [&](int f) {
     Stopwatch write_clock;
@@ -436,6 +440,9 @@ RunSummary Simulation::run() {
     if (f == 0) {
       sum.energy_start = energy;
       sum.energy_highest = energy;
+      const Solver::ImageCoverage images = solver.image_coverage();
+      sum.images_near = images.near;
+      sum.images_imaged = images.imaged;
     } else {
       sum.energy_max_rise = std::max(sum.energy_max_rise, energy - previous_energy);
       sum.energy_highest = std::max(sum.energy_highest, energy);
@@ -551,7 +558,7 @@ double RunSummary::energy_growth() const {
 }
 
 std::vector<std::pair<std::string, double>> summary_values(const RunSummary& r) {
-  return {{"wall_time", r.wall_seconds},
+  std::vector<std::pair<std::string, double>> out{{"wall_time", r.wall_seconds},
           {"simulated_time", r.simulated},
           {"steps", static_cast<double>(r.steps)},
           {"particle_steps", r.particle_steps},
@@ -568,6 +575,11 @@ std::vector<std::pair<std::string, double>> summary_values(const RunSummary& r) 
           {"energy_largest_rise", r.energy_max_rise},
           {"energy_emitted", r.emitted_energy},
           {"energy_outflow", r.outflow_energy}};
+  if (r.images_near >= 0) {
+    out.emplace_back("images_near", static_cast<double>(r.images_near));
+    out.emplace_back("images_imaged", static_cast<double>(r.images_imaged));
+  }
+  return out;
 }
 
 std::string format_summary(const RunSummary& r) {
@@ -598,6 +610,14 @@ std::string format_summary(const RunSummary& r) {
   out += fmt::format("  energy       {:.6g} J -> {:.6g} J{}: drift {:+.2f}% of the {}, {}\n", r.energy_start, r.energy_end,
                      terms, 100 * r.energy_drift(),
                      r.emitted_energy > std::abs(r.energy_start) ? "energy put in" : "initial total", growth);
+  if (r.images_near > 0 && r.images_imaged > 0)
+    out += fmt::format("  walls        mirror images for {} of the {} fluid particles near solids at the start ({:.0f}%)\n",
+                       r.images_imaged, r.images_near,
+                       100 * static_cast<double>(r.images_imaged) / static_cast<double>(r.images_near));
+  else if (r.images_near > 0)  // the solids' particles hold the water: the hydrostatic wall
+    out += fmt::format("  walls        no mirror images for the {} fluid particles near solids at the start: no flat "
+                       "face of a solid that stays put looks toward them (docs/scene.md, \"Walls as mirror images\")\n",
+                       r.images_near);
   out += fmt::format("  device       {}, {} ({:.0f} bytes per fluid particle)\n", r.device, human_bytes(r.device_bytes),
                      r.capacity > 0 ? static_cast<double>(r.device_bytes) / static_cast<double>(r.capacity) : 0.0);
   return out;

@@ -56,6 +56,10 @@ struct RunSummary {
   double emitted_energy = 0;           // what emitters and moving solids put in by the end (J)
   double outflow_energy = 0;           // what left the domain by the end (J)
   std::int64_t fluid_end = 0, removed = 0, boundary = 0;
+  // fluid.wall_pressure = "images": at frame 0, the fluid particles within h of a
+  // solid and how many of them had mirror planes (Solver::image_coverage; -1: another
+  // wall, or a checkpoint of an earlier version).
+  std::int64_t images_near = -1, images_imaged = -1;
   // (energy_end - energy_start) / scale and (energy_highest - energy_start) / scale:
   // what the run lost (negative) and the most it ever gained, scale the larger of
   // |energy_start| and emitted_energy.

@@ -544,6 +544,25 @@ std::vector<float> Solver::summed_density() {
   return out;
 }
 
+Solver::ImageCoverage Solver::image_coverage() {
+  Impl& s = *impl_;
+  ImageCoverage out;
+  if (!s.params.wall_images) return out;
+  s.ensure_grid();
+  s.settle_count();
+  out.near = out.imaged = 0;
+  if (s.n == 0) return out;
+  constexpr std::uint32_t kNoPlane = 0xffffffffu;  // BW_NO_PLANE, sph_images.h
+  const std::vector<float> phi = s.ctx.read_vector<float>(s.phi, s.n);
+  const std::vector<std::uint32_t> planes = s.ctx.read_vector<std::uint32_t>(s.wplane, 4 * std::size_t(s.n));
+  for (std::size_t i = 0; i < s.n; ++i) {
+    if (!(phi[i] > 0)) continue;  // no solid's particle within h
+    ++out.near;
+    if (planes[4 * i] != kNoPlane) ++out.imaged;
+  }
+  return out;
+}
+
 Solver::Neighbours Solver::neighbour_lists(std::uint32_t max_per_particle) {
   Impl& s = *impl_;
   s.ensure_grid();

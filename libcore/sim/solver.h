@@ -211,6 +211,15 @@ class Solver {
   // no fluid starts on top of a solid or of other fluid, whatever the density scheme.
   std::vector<float> summed_density();
 
+  // fluid.wall_pressure = "images": of the fluid particles within h of a solid's
+  // particles now, how many have mirror planes; the others are held by the particles
+  // (convex edges and rims, bodies the water moves, faces that look away from the
+  // water: docs/scene.md, "Walls as mirror images"). Both -1 with another wall.
+  struct ImageCoverage {
+    std::int64_t near = -1, imaged = -1;
+  };
+  ImageCoverage image_coverage();
+
   // For tests: the sorted fluid positions and, per particle, the sorted indices of
   // its neighbours within h (including itself).
   struct Neighbours {

@@ -516,6 +516,66 @@ fields = ["velocity"]
   EXPECT_LT(moving, 2 * resting + 1e-4 * 0.5 * kSpeed * kSpeed);
 }
 
+// The run says how much of the water near solids the images hold, so that a tank whose
+// faces look away from its water (sampled from a box's faces with the water inside) is
+// seen to give none. A pool in a tank with walls, its faces toward the water: every
+// particle within h of them is in front of their faces, at a concave edge or corner of
+// planes at right angles, so every one has images. The same pool in the tank of a box's
+// faces: none has, and the walls' particles hold it (the hydrostatic wall).
+TEST(Images, TheRunSaysHowMuchOfTheWaterNearSolidsTheyHold) {
+  test::TempDir dir;
+  constexpr double kCoarse = 0.02;
+  test::write_thick_tank(dir.file("walls.h5"), Eigen::Vector3i(10, 6, 10), kCoarse, 2 * kCoarse);
+  test::write_tank(dir.file("faces.h5"), Eigen::Vector3i(10, 6, 10), kCoarse);
+  auto run = [&](const std::string& tank, double lo, const std::string& wall) {
+    const std::string name = tank + "-" + wall;
+    std::ofstream(dir.file(name + ".toml")) << fmt::format(R"(
+spacing = {0}
+[time]
+end = 0.05
+frame_rate = 20
+[domain]
+min = [-0.1, -0.1, -0.1]
+max = [0.4, 0.3, 0.4]
+[fluid]
+wall_pressure = "{3}"
+[[fluid.block]]
+min = [{1}, {1}, {1}]
+max = [{2}, 0.12, 0.1]
+[[solid]]
+name = "tank"
+particles = "{4}.h5"
+)",
+                                                            kCoarse, lo, 0.2, wall, tank);
+    const sim::RunSummary summary = test::run_scene(dir.file(name + ".toml"), dir.file(name));
+    const RunRecord record = read_run(dir.file(name + "/run.h5"));
+    std::map<std::string, double> values(record.summary.begin(), record.summary.end());
+    if (summary.images_near >= 0) {
+      EXPECT_EQ(values.at("images_near"), static_cast<double>(summary.images_near)) << name << ": in the run file";
+      EXPECT_EQ(values.at("images_imaged"), static_cast<double>(summary.images_imaged)) << name;
+    } else {
+      EXPECT_EQ(values.count("images_near"), 0u) << name << ": no images, no figure";
+    }
+    test::figure(name + ": fluid particles near solids at the start", static_cast<double>(summary.images_near));
+    test::figure(name + ": of them with images", static_cast<double>(summary.images_imaged));
+    return summary;
+  };
+  const sim::RunSummary walls = run("walls", 0, "images");
+  EXPECT_GT(walls.images_near, 100) << "the pool's floor and walls";
+  EXPECT_EQ(walls.images_imaged, walls.images_near) << "every particle near the cavity's faces has images";
+  EXPECT_NE(sim::format_summary(walls).find("walls        mirror images for"), std::string::npos);
+
+  const sim::RunSummary faces = run("faces", kCoarse, "images");
+  EXPECT_GT(faces.images_near, 100);
+  EXPECT_EQ(faces.images_imaged, 0) << "the box's faces look away from the water";
+  EXPECT_NE(sim::format_summary(faces).find("walls        no mirror images for"), std::string::npos)
+      << sim::format_summary(faces);
+
+  const sim::RunSummary particles = run("walls", 0, "hydrostatic");
+  EXPECT_EQ(particles.images_near, -1);
+  EXPECT_EQ(sim::format_summary(particles).find("walls "), std::string::npos);
+}
+
 // Water sloshing in a channel as wide as the kernel's support (two particles across at
 // 0.04 m, the width of a flume run as a slice), without friction: walls that do not move
 // give the water no energy, so its total, once lost, never comes back. Every particle
