@@ -251,6 +251,52 @@ TEST(Spheric, TheSpreadGivesEachFiguresMeanAndRangeOverTheRuns) {
   EXPECT_NE(other.err.find("no column rise_error_ms"), std::string::npos) << other.err;
 }
 
+// sensor-spectrum.sh on a history whose answer is known: 5 kPa plus a 1 kPa sine at
+// 100 Hz, sampled at 4 kHz (each sample its mean over 0.25 ms, as bw-measure sensors
+// writes them), and a second sensor reading the same 1 ms later. Over 0.45-0.55 s
+// (ten periods) the power is all in the sine's band, the sine averaged over 2.5 ms
+// samples keeps sin(pi f T) / (pi f T) = 0.900 of its amplitude and changes from one
+// sample to the next by sqrt(2) sin(pi f T) of that, an RMS of 900 Pa: 18% of the mean.
+TEST(Spheric, TheSpectrumFindsASinesBandItsNoiseAndTheLagOfAnother) {
+  test::TempDir dir;
+  const double kPi = std::acos(-1.0), f = 100.0, dt = 0.00025;
+  // The mean over a sample's interval of 1000 sin(2 pi f t), centred at t.
+  const auto sample = [&](double t) {
+    return 1000.0 * (std::cos(2 * kPi * f * (t - dt / 2)) - std::cos(2 * kPi * f * (t + dt / 2))) / (2 * kPi * f * dt);
+  };
+  {
+    std::ofstream out(dir.file("sensors.csv"));
+    out << "time,P1,P2\n";
+    char line[96];
+    for (int k = 0; (k + 0.5) * dt < 0.6; ++k) {
+      const double t = (k + 0.5) * dt;
+      std::snprintf(line, sizeof line, "%.6f,%.3f,%.3f\n", t, 5000 + sample(t), 5000 + sample(t - 0.001));
+      out << line;
+    }
+  }
+  const std::string script = kSource + "/tests/study/sensor-spectrum.sh " + dir.file("sensors.csv");
+  const auto r = test::run(script + " P1 0.45 0.55 30 P2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("P1: 400 samples 0.250 ms apart, mean 5000.0 Pa"), std::string::npos) << r.out;
+  const auto figure = [&](const std::string& key) {
+    const auto at = r.out.find(key);
+    return at == std::string::npos ? NAN : std::stod(r.out.substr(at + key.size()));
+  };
+  EXPECT_NEAR(figure("noise over samples of 2.50 ms: "), 18.0, 1.0) << r.out;
+  EXPECT_NEAR(figure("noise over samples of 0.25 ms: "), 2.2, 1.0) << r.out;
+  EXPECT_GT(figure("\n90-120,"), 99.0) << r.out;
+  EXPECT_NEAR(figure("at lag 0, largest "), 1.0, 0.02) << r.out;
+  EXPECT_NE(r.out.find(" at +1.00 ms"), std::string::npos) << r.out;
+
+  // A sensor the file does not hold, or an empty span, is refused with what was expected.
+  const auto missing = test::run(script + " P3 0.45 0.55");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("has no column 'P3' (its columns: time P1 P2)"), std::string::npos) << missing.err;
+  const auto backwards = test::run(script + " P1 0.55 0.45");
+  EXPECT_EQ(backwards.exit_code, 2);
+  EXPECT_NE(backwards.err.find("expected times in s with T1 > T0"), std::string::npos) << backwards.err;
+}
+
 // spheric-convergence.sh: the mean peak at each spacing fitted with P0 + k dx and the
 // noise with C dx^p (Makefile.scenes spheric2-convergence). Reports whose peaks lie on
 // 11 + 700 dx kPa and whose noise is 100 dx^1.5, two draws at 0.02 m.
