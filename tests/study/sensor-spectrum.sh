@@ -67,6 +67,7 @@ awk -F, -v a="$a" -v b="$b" -v t0="$t0" -v t1="$t1" -v band="$band" -v name="$na
     for (k = 0; k <= top; ++k)
       if (total > 0) printf "%g-%g,%.1f%%\n", k * band, (k + 1) * band, 100 * bands[k] / total
     if (!b) exit
+    if (n <= 80) { print "correlation with " other ": needs more than the 80 samples of its longest period and lag"; exit }
     moving(x, 4, x4); moving(x, 40, x40); moving(y, 4, y4); moving(y, 40, y40)
     # the first 40 samples hold the start of the long mean
     m = 0; sa = 0; sb = 0; ma = 0; mb = 0
