@@ -395,6 +395,16 @@ void read_fluid(Reader& top, Scene& s) {
     if (f.wall_pressure != WallPressure::mirrored && f.density == DensityScheme::summation)
       r.fail("wall_pressure", fmt::format("the {} wall pressure needs fluid.density = \"continuity\"", wall));
   }
+  if (r.has("seed")) {
+    f.seed = r.integer("seed", 0);
+    if (f.seed < 0) r.fail("seed", fmt::format("{} must be 0 (the lattice as it is) or a draw's number, 1 or more", f.seed));
+  }
+  if (r.has("jitter")) {
+    f.jitter = r.number("jitter", f.jitter);
+    if (!(f.jitter > 0 && f.jitter <= 0.1))
+      r.fail("jitter", fmt::format("{} is outside (0, 0.1] spacings", f.jitter));
+    if (f.seed == 0) r.fail("jitter", "moves particles only in a draw: set fluid.seed to 1 or more");
+  }
   if (r.has("max_particles")) {
     f.max_particles = r.integer("max_particles", 0);
     if (f.max_particles < 1) r.fail("max_particles", fmt::format("{} must be at least 1", f.max_particles));

@@ -53,6 +53,11 @@ struct FluidSettings {
   DensityScheme density = DensityScheme::continuity;
   double diffusion = 0.1;      // delta of the density diffusion (continuity only); 0: none
   WallPressure wall_pressure = WallPressure::images;  // continuity only; summation: mirrored
+  // One draw of an ensemble (docs/scene.md, "Draws"): 0 leaves the blocks on their lattice;
+  // N >= 1 moves each block particle off its lattice point by a uniform offset of up to
+  // `jitter` spacings per axis, the same for the same N on every device.
+  std::int64_t seed = 0;
+  double jitter = 1e-3;        // spacings, in (0, 0.1]; only with seed >= 1
 };
 
 // A box filled with fluid particles on a cubic lattice of the scene's spacing:

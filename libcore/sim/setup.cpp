@@ -457,6 +457,20 @@ fracture::Piece breakable_piece(const BodySetup& body) {
   return piece;
 }
 
+// A uniform number in [-1, 1) for (seed, particle, axis): a counter-based hash (the
+// finaliser of splitmix64), so that a draw is the same whatever order particles are
+// made in and on whatever device the run goes on.
+double seeded_offset(std::uint64_t seed, std::uint64_t particle, int axis) {
+  auto mix = [](std::uint64_t z) {
+    z += 0x9E3779B97F4A7C15ull;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  };
+  const std::uint64_t bits = mix(mix(seed) ^ (3 * particle + static_cast<std::uint64_t>(axis)));
+  return static_cast<double>(bits >> 11) * 0x1.0p-52 - 1.0;
+}
+
 // The density the continuity equation starts from: each block at rest under gravity,
 // rho0 (1 + rho0 |g| d / k)^(1 / gamma) at depth d below its top (half a spacing above
 // its highest particles), the Tait law's inverse at the hydrostatic pressure, so a
@@ -523,7 +537,9 @@ Setup prepare(const scene::Scene& s, double end_time) {
   const double nu = std::max(p.mu, p.mu_b) / p.rho0;
   p.dt_viscous = nu > 0 ? s.time.viscous_factor * p.h * p.h / nu : std::numeric_limits<double>::infinity();
 
-  // Fluid blocks on the lattice min + (i + 1/2) spacing.
+  // Fluid blocks on the lattice min + (i + 1/2) spacing; in a draw (fluid.seed >= 1)
+  // each particle off its point by up to fluid.jitter spacings per axis.
+  const double jitter = f.seed > 0 ? f.jitter * p.spacing : 0.0;
   for (const scene::Block& b : s.blocks) {
     const std::size_t before = out.fluid.size();
     const Vec3d extent = b.max - b.min;
@@ -534,7 +550,11 @@ Setup prepare(const scene::Scene& s, double end_time) {
         for (std::int64_t i = 0; i < nx; ++i) {
           const Vec3d q = b.min + p.spacing * Vec3d(static_cast<double>(i) + 0.5, static_cast<double>(j) + 0.5,
                                                     static_cast<double>(k) + 0.5);
-          out.fluid.push(q, b.velocity);
+          Vec3d offset = Vec3d::Zero();
+          if (jitter > 0)
+            for (int a = 0; a < 3; ++a)
+              offset[a] = jitter * seeded_offset(static_cast<std::uint64_t>(f.seed), out.fluid.size(), a);
+          out.fluid.push(q + offset, b.velocity);
         }
     out.block_particles.push_back(out.fluid.size() - before);
   }

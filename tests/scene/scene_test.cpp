@@ -79,6 +79,8 @@ TEST(Scene, MinimalSceneHasDocumentedDefaults) {
   EXPECT_EQ(s.fluid.density, bw::scene::DensityScheme::continuity);
   EXPECT_DOUBLE_EQ(s.fluid.diffusion, 0.1) << "delta of the density diffusion, on by default";
   EXPECT_EQ(s.fluid.wall_pressure, bw::scene::WallPressure::images);
+  EXPECT_EQ(s.fluid.seed, 0) << "no draw: the blocks on their lattice";
+  EXPECT_DOUBLE_EQ(s.fluid.jitter, 1e-3);
   EXPECT_FALSE(s.loads);
   ASSERT_EQ(s.blocks.size(), 1u);
   EXPECT_TRUE(s.fields.velocity);
@@ -114,6 +116,8 @@ mu_b = 0.1
 gamma1 = 0.8
 gamma2 = 0.6
 max_particles = 50000
+seed = 4
+jitter = 0.01
 [[fluid.block]]
 min = [0, 0, 0]
 max = [0.2, 0.2, 0.2]
@@ -158,6 +162,8 @@ width = 640
   EXPECT_DOUBLE_EQ(s.fluid.mu_b, 0.1);
   EXPECT_DOUBLE_EQ(s.fluid.gamma2, 0.6);
   EXPECT_EQ(s.fluid.max_particles, 50000);
+  EXPECT_EQ(s.fluid.seed, 4);
+  EXPECT_DOUBLE_EQ(s.fluid.jitter, 0.01);
   ASSERT_EQ(s.emitters.size(), 2u);
   EXPECT_EQ(s.emitters[0].shape, Emitter::Shape::disc);
   EXPECT_NEAR(s.emitters[0].normal.z(), -1, 1e-12) << "normals are normalized";
@@ -234,6 +240,10 @@ TEST(SceneErrors, OutOfRangeValues) {
   expect_error(f, kMinimal + "[fluid]\nk = 1000\nc0 = 30\n", "fluid.c0: give either k or c0, not both");
   expect_error(f, kMinimal + "[fluid]\ngamma = 0.5\n", "fluid.gamma: 0.5 must be at least 1");
   expect_error(f, kMinimal + "[fluid]\nmu = -1\n", "fluid.mu: -1 must not be negative");
+  expect_error(f, kMinimal + "[fluid]\nseed = -2\n", "fluid.seed: -2 must be 0 (the lattice as it is) or a draw's number");
+  expect_error(f, kMinimal + "[fluid]\nseed = 1.5\n", "fluid.seed: 1.5 is not a whole number");
+  expect_error(f, kMinimal + "[fluid]\nseed = 3\njitter = 0.5\n", "fluid.jitter: 0.5 is outside (0, 0.1] spacings");
+  expect_error(f, kMinimal + "[fluid]\njitter = 0.01\n", "fluid.jitter: moves particles only in a draw: set fluid.seed");
   expect_error(f, "spacing = 0.02\nsmoothing_length = 0.2\n[time]\nend = 1\n", "smoothing_length: 0.2 is 10 spacings");
   expect_error(f, "spacing = 0.02\n[time]\nend = 0\n", "time.end: 0 must be positive");
   expect_error(f, "spacing = 0.02\n[time]\nend = 1\ncfl = 2\n", "time.cfl: 2 is outside (0, 1]");

@@ -218,6 +218,57 @@ TEST(Fluid, FullLatticeHasRestDensityAndBlocksWeighRho0PerVolume) {
   EXPECT_LT(setup.params.kernel_mass, 0.82 * setup.params.mass);
 }
 
+// A draw of an ensemble (fluid.seed): the same lattice, each particle moved by a
+// uniform offset of up to fluid.jitter spacings per axis, the same for the same seed
+// and another for another seed.
+TEST(Fluid, ADrawMovesEachBlockParticleBySeededOffsetsWithinItsJitter) {
+  test::TempDir dir;
+  const sim::Setup lattice = prepare_scene(dir, false);
+  const sim::Setup draw = prepare_scene(dir, false, "seed = 7\njitter = 0.1\n");
+  const sim::Setup again = prepare_scene(dir, false, "seed = 7\njitter = 0.1\n");
+  const sim::Setup other = prepare_scene(dir, false, "seed = 8\njitter = 0.1\n");
+  const sim::Setup small = prepare_scene(dir, false, "seed = 1\n");
+  const std::size_t n = lattice.fluid.size();
+  ASSERT_GT(n, 100u);
+  ASSERT_EQ(draw.fluid.size(), n);
+  ASSERT_EQ(small.fluid.size(), n);
+  const double spacing = lattice.params.spacing;
+  auto offset = [&](const sim::Setup& s, std::size_t i, int a) {
+    const std::vector<float>* axes[3] = {&s.fluid.x, &s.fluid.y, &s.fluid.z};
+    const std::vector<float>* base[3] = {&lattice.fluid.x, &lattice.fluid.y, &lattice.fluid.z};
+    return (static_cast<double>((*axes[a])[i]) - (*base[a])[i]) / spacing;
+  };
+  double largest = 0, largest_small = 0;
+  Vec3d mean = Vec3d::Zero();
+  std::size_t moved_small = 0, differ = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    bool any_small = false, any_other = false;
+    for (int a = 0; a < 3; ++a) {
+      largest = std::max(largest, std::abs(offset(draw, i, a)));
+      mean[a] += offset(draw, i, a) / static_cast<double>(n);
+      largest_small = std::max(largest_small, std::abs(offset(small, i, a)));
+      any_small = any_small || offset(small, i, a) != 0;
+      any_other = any_other || offset(other, i, a) != offset(draw, i, a);
+    }
+    moved_small += any_small;
+    differ += any_other;
+  }
+  test::figure("largest offset at jitter 0.1 (spacings)", largest);
+  test::figure("largest offset at the default jitter (spacings)", largest_small);
+  EXPECT_LE(largest, 0.1 + 1e-5) << "float positions round within 1e-5 spacings here";
+  // 3n uniform offsets in [-0.1, 0.1): the largest falls short of 0.09 with probability 0.9^(3n).
+  EXPECT_GT(largest, 0.09);
+  // Their mean is within 4 standard errors of 0: sigma 0.1 / sqrt(3) spacings.
+  for (int a = 0; a < 3; ++a) EXPECT_LT(std::abs(mean[a]), 4 * 0.1 / std::sqrt(3.0 * static_cast<double>(n))) << a;
+  EXPECT_LE(largest_small, 1e-3 + 1e-5);
+  EXPECT_GT(largest_small, 0.5e-3);
+  EXPECT_EQ(moved_small, n) << "every particle of a draw moves";
+  EXPECT_EQ(draw.fluid.x, again.fluid.x);
+  EXPECT_EQ(draw.fluid.y, again.fluid.y);
+  EXPECT_EQ(draw.fluid.z, again.fluid.z);
+  EXPECT_EQ(differ, n) << "another seed moves every particle otherwise";
+}
+
 // The fluid layer on a tank's floor: the particles below `below` and at least h inside
 // the side walls' planes at lo and hi (in x and y), and their largest |rho/rho0 - 1|.
 struct FloorLayer {
