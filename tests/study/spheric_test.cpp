@@ -229,9 +229,12 @@ TEST(Spheric, TheSpreadGivesEachFiguresMeanAndRangeOverTheRuns) {
   EXPECT_DOUBLE_EQ(std::stod(table.at("noise_mean").at(1)), 0.49) << "a run without a figure leaves it out";
   EXPECT_DOUBLE_EQ(std::stod(table.at("load_peak_error_mean").at(0)), -0.049);
   EXPECT_EQ(table.at("load_window_s").at(0), "0.02");
-  EXPECT_NE(r.out.find("| P1 | 2 | +23.5 (+22.3 to +24.7) | +107% (+69 to +145) |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| P1 | 2 | +23.5 ± 1.7 (+22.3 to +24.7) | +107% ± 54 (+69 to +145) |"), std::string::npos) << r.out;
+  EXPECT_NEAR(std::stod(table.at("rise_error_ms_sd").at(0)), 2.4 / std::sqrt(2.0), 1e-3) << "sd over n - 1";
+  EXPECT_NE(r.out.find("| 42% ± 13 (33 to 51%) |"), std::string::npos) << r.out;
+  EXPECT_EQ(table.at("noise_sd").at(1), "nan") << "one run with a figure has no sd";
   EXPECT_NE(r.out.find("peak of the 20 ms mean, error |"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("| -5% (-11 to +2) |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| -5% ± 9 (-11 to +2) |"), std::string::npos) << r.out;
 
   // One report is its own range (spheric2-spread at one width); no report, a report
   // without a sensor of the others, or a file that is no report, is refused.
