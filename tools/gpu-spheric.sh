@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # SPHERIC Test 2 (docs/validation.md, "Impact pressure") with the bundled tools
 # (tools/gpu-bundle.sh) on one OpenCL device, for a machine with only a GPU driver:
-# the scene at each spacing, diffusion coefficient and kernel vector width asked
-# for, each run its face sensors' report against the experiment (rise, peak, mean
-# and noise over 0.45-0.55 s, the peak of the 20 ms mean;
-# tests/study/spheric-report.sh) and, where a spacing and coefficient ran at two
-# widths or more, the spread over those draws (tests/study/spheric-spread.sh). The
-# driver is set up as tools/gpu-check.sh does it (tools/gpu-driver.sh). Runs go in
+# the scene at each spacing, diffusion coefficient, kernel vector width and draw
+# (fluid.seed, docs/scene.md "Draws") asked for, each run its face sensors' report
+# against the experiment (rise, peak, mean and noise over 0.45-0.55 s, the peak of
+# the 20 ms mean; tests/study/spheric-report.sh) and, where a spacing and coefficient
+# ran at two widths or seeds or more, the spread over those draws
+# (tests/study/spheric-spread.sh). The driver is set up as tools/gpu-check.sh does it (tools/gpu-driver.sh). Runs go in
 # the order given, cheapest first is best; each has what is left of --budget, and
 # one stopped at its limit (SIGTERM: bw-sim closes its files) is reported as far as
 # it went. Run from the repository's root (the report scripts and the experiment's
@@ -14,12 +14,14 @@
 #
 #   tools/gpu-spheric.sh --bundle out/gpu-bundle.tar.gz --out out/gpu-spheric \
 #       --spacings 0.02,0.01 --diffusion 0.1,0.3 --widths device,2
+#   tools/gpu-spheric.sh --bundle out/gpu-bundle.tar.gz --out OUT --spacings 0.01 --seeds 0,1,2,3
 #   tools/gpu-spheric.sh --bundle out/gpu-bundle.tar.gz --out OUT --spacings 0.005 --budget 420
 #   make -f Makefile.scenes gpu-spheric GPU_SPHERIC_SPACINGS=0.02,0.01
 #
 # OUTDIR: runs.csv (one row per run: spacing, diffusion, width, exit status, steps,
-# simulated and wall seconds, fluid particles, device), summary.md (every report's
-# table), gpu-spheric.log, and SPACING/dDELTA-wWIDTH/ per run (sensors.csv and the
+# simulated and wall seconds, fluid particles, device, seed), summary.md (every
+# report's table), gpu-spheric.log, and SPACING/dDELTA-wWIDTH/ per run (-sSEED after
+# it for a draw) (sensors.csv and the
 # report spheric2.{csv,md}, spheric2.png where gnuplot is installed) and
 # SPACING/dDELTA/spheric2-spread.{csv,md} (DELTA "scene" without --diffusion). Exit
 # status 0 when every run reached --end, 1 when one failed or stopped short, 2 on
@@ -35,6 +37,7 @@ Options:
   --spacings LIST   particle spacings in m, comma-separated (default 0.02)
   --diffusion LIST  fluid.diffusion values (default: the scene's, 0.1)
   --widths LIST     kernel vector widths: device (the device's own) or 1, 2, 4, 8, 16 (default device)
+  --seeds LIST      draws at each width: fluid.seed values, 0 the lattice as it is (default 0)
   --end S           simulated seconds of each run (default 0.56: past the window 0.45-0.55 s)
   --frames HZ       frames a second written (default 10; the sensors are sampled apart from them). A run
                     stopped at its limit finishes its frame (killed 90 s after): at millions of
@@ -47,15 +50,15 @@ EOF
 die() { echo "gpu-spheric: $1" >&2; exit "${2:-1}"; }
 number() { [[ $2 =~ ^[0-9]*\.?[0-9]+$ ]] || die "$1: '$2' is not a positive number" 2; }
 
-bundle="" out="" spacings=0.02 diffusions="" widths=device end=0.56 frames=10 device=gpu budget=540 work=""
+bundle="" out="" spacings=0.02 diffusions="" widths=device seeds=0 end=0.56 frames=10 device=gpu budget=540 work=""
 while [[ $# -gt 0 ]]; do
   case $1 in
     -h|--help) usage; exit 0 ;;
-    --bundle|--out|--spacings|--diffusion|--widths|--end|--frames|--device|--budget|--work)
+    --bundle|--out|--spacings|--diffusion|--widths|--seeds|--end|--frames|--device|--budget|--work)
       [[ $# -ge 2 && -n $2 ]] || die "$1 needs a value (see --help)" 2
       case $1 in
         --bundle) bundle=$2 ;; --out) out=$2 ;; --spacings) spacings=$2 ;; --diffusion) diffusions=$2 ;;
-        --widths) widths=$2 ;; --end) end=$2 ;; --frames) frames=$2 ;; --device) device=$2 ;;
+        --widths) widths=$2 ;; --seeds) seeds=$2 ;; --end) end=$2 ;; --frames) frames=$2 ;; --device) device=$2 ;;
         --budget) budget=$2 ;; --work) work=$2 ;;
       esac
       shift 2 ;;
@@ -70,12 +73,16 @@ number --end "$end"
 number --frames "$frames"
 IFS=, read -r -a spacing_list <<< "$spacings"
 IFS=, read -r -a width_list <<< "$widths"
+IFS=, read -r -a seed_list <<< "$seeds"
 diffusion_list=(scene)
 [[ -z $diffusions ]] || IFS=, read -r -a diffusion_list <<< "$diffusions"
 for s in "${spacing_list[@]}"; do number --spacings "$s"; done
 for d in "${diffusion_list[@]}"; do [[ $d == scene ]] || number --diffusion "$d"; done
 for w in "${width_list[@]}"; do
   [[ $w =~ ^(device|1|2|4|8|16)$ ]] || die "--widths: '$w' is not device, 1, 2, 4, 8 or 16" 2
+done
+for n in "${seed_list[@]}"; do
+  [[ $n =~ ^[0-9]+$ ]] || die "--seeds: '$n' is not a whole number, 0 or more" 2
 done
 root=$(cd "$(dirname "$0")/.." && pwd)
 reference=$root/examples/data/spheric-test2-pressure.txt
@@ -133,46 +140,51 @@ for s in "${spacing_list[@]}"; do
   done
 done
 
-echo "spacing,diffusion,width,exit,steps,simulated_s,wall_s,fluid,device" > "$out/runs.csv"
+echo "spacing,diffusion,width,exit,steps,simulated_s,wall_s,fluid,device,seed" > "$out/runs.csv"
 : > "$out/summary.md"
 failed=0
 for s in "${spacing_list[@]}"; do
   for d in "${diffusion_list[@]}"; do
     reports=()
     for w in "${width_list[@]}"; do
-      name=d$d-w$w dir=$out/$s/d$d-w$w run=$work/$s/d$d-w$w
-      limit=$(( $(left) - 10 ))
-      if (( limit < 20 )); then say "$s m, $name: not run, the budget is spent"; failed=1; continue; fi
-      mkdir -p "$dir" "$run"
-      sets=(--set "spacing=$s" --set "solid[0].particles=$work/$s/tank.h5" --set "solid[1].particles=$work/$s/box.h5"
-            --set "time.end=$end" --set "time.frame_rate=$frames")
-      [[ $d == scene ]] || sets+=(--set "fluid.diffusion=$d")
-      rc=0 t0=$SECONDS
-      # The width in bw-sim's environment only (libcore/compute/kernels.cpp).
-      width_env=(BW_KERNEL_VECTOR_WIDTH="$w")
-      [[ $w != device ]] || width_env=(-u BW_KERNEL_VECTOR_WIDTH)
-      env "${width_env[@]}" timeout -s TERM -k 90 "$limit" "$B/bw-sim" "$root/examples/spheric2.toml" \
-        -o "$run" --device "$device" "${sets[@]}" > "$dir/bw-sim.log" 2>&1 || rc=$?
-      if [[ ! -s $run/run.h5 ]] || ! "$B/bw-measure" sensors "$run/run.h5" > "$dir/sensors.csv" 2>> "$log"; then
-        say "$s m, $name: bw-sim exit $rc, no sensors ($(tail -1 "$dir/bw-sim.log" | cut -c1-200))"
-        echo "$s,$d,$w,$rc,,,$(( SECONDS - t0 )),," >> "$out/runs.csv"
-        failed=1
-        continue
-      fi
-      "$B/gpu-tool" rate "$run/run.h5" --last 1 > "$run/rate.txt" 2>> "$log" || true
-      echo "$s,$d,$w,$rc,$(key steps "$run/rate.txt"),$(key simulated "$run/rate.txt"),$(( SECONDS - t0 )),$(key fluid "$run/rate.txt"),\"$(key device "$run/rate.txt")\"" >> "$out/runs.csv"
-      (( rc == 0 )) || { failed=1; say "$s m, $name: stopped (exit $rc, 124: the time limit of $limit s); reported as far as it went"; }
-      "$root/tests/study/spheric-report.sh" "$dir/sensors.csv" "$reference" "$dir/spheric2" "$s" > /dev/null 2>> "$log" ||
-        { say "$s m, $name: spheric-report.sh failed ($log)"; failed=1; continue; }
-      reports+=("$dir/spheric2.csv")
-      say "$s m, $name: exit $rc, $(key steps "$run/rate.txt") steps in $(( SECONDS - t0 )) s"
-      { echo "### $s m, diffusion $d, width $w (exit $rc, $(key steps "$run/rate.txt") steps, $(( SECONDS - t0 )) s)"
-        echo; cat "$dir/spheric2.md"; echo; } >> "$out/summary.md"
+      for n in "${seed_list[@]}"; do
+        name=d$d-w$w
+        (( n == 0 )) || name+=-s$n
+        dir=$out/$s/$name run=$work/$s/$name
+        limit=$(( $(left) - 10 ))
+        if (( limit < 20 )); then say "$s m, $name: not run, the budget is spent"; failed=1; continue; fi
+        mkdir -p "$dir" "$run"
+        sets=(--set "spacing=$s" --set "solid[0].particles=$work/$s/tank.h5" --set "solid[1].particles=$work/$s/box.h5"
+              --set "time.end=$end" --set "time.frame_rate=$frames")
+        [[ $d == scene ]] || sets+=(--set "fluid.diffusion=$d")
+        (( n == 0 )) || sets+=(--set "fluid.seed=$n")
+        rc=0 t0=$SECONDS
+        # The width in bw-sim's environment only (libcore/compute/kernels.cpp).
+        width_env=(BW_KERNEL_VECTOR_WIDTH="$w")
+        [[ $w != device ]] || width_env=(-u BW_KERNEL_VECTOR_WIDTH)
+        env "${width_env[@]}" timeout -s TERM -k 90 "$limit" "$B/bw-sim" "$root/examples/spheric2.toml" \
+          -o "$run" --device "$device" "${sets[@]}" > "$dir/bw-sim.log" 2>&1 || rc=$?
+        if [[ ! -s $run/run.h5 ]] || ! "$B/bw-measure" sensors "$run/run.h5" > "$dir/sensors.csv" 2>> "$log"; then
+          say "$s m, $name: bw-sim exit $rc, no sensors ($(tail -1 "$dir/bw-sim.log" | cut -c1-200))"
+          echo "$s,$d,$w,$rc,,,$(( SECONDS - t0 )),,,$n" >> "$out/runs.csv"
+          failed=1
+          continue
+        fi
+        "$B/gpu-tool" rate "$run/run.h5" --last 1 > "$run/rate.txt" 2>> "$log" || true
+        echo "$s,$d,$w,$rc,$(key steps "$run/rate.txt"),$(key simulated "$run/rate.txt"),$(( SECONDS - t0 )),$(key fluid "$run/rate.txt"),\"$(key device "$run/rate.txt")\",$n" >> "$out/runs.csv"
+        (( rc == 0 )) || { failed=1; say "$s m, $name: stopped (exit $rc, 124: the time limit of $limit s); reported as far as it went"; }
+        "$root/tests/study/spheric-report.sh" "$dir/sensors.csv" "$reference" "$dir/spheric2" "$s" > /dev/null 2>> "$log" ||
+          { say "$s m, $name: spheric-report.sh failed ($log)"; failed=1; continue; }
+        reports+=("$dir/spheric2.csv")
+        say "$s m, $name: exit $rc, $(key steps "$run/rate.txt") steps in $(( SECONDS - t0 )) s"
+        { echo "### $s m, diffusion $d, width $w, seed $n (exit $rc, $(key steps "$run/rate.txt") steps, $(( SECONDS - t0 )) s)"
+          echo; cat "$dir/spheric2.md"; echo; } >> "$out/summary.md"
+      done
     done
     if (( ${#reports[@]} >= 2 )); then
       mkdir -p "$out/$s/d$d"
       "$root/tests/study/spheric-spread.sh" "$out/$s/d$d/spheric2-spread" "${reports[@]}" > /dev/null 2>> "$log" || failed=1
-      { echo "### $s m, diffusion $d: over ${#reports[@]} widths, mean (least to largest)"
+      { echo "### $s m, diffusion $d: over ${#reports[@]} draws (widths $widths, seeds $seeds), mean ± sd (least to largest)"
         echo; cat "$out/$s/d$d/spheric2-spread.md"; echo; } >> "$out/summary.md"
     fi
   done

@@ -79,22 +79,25 @@ if [[ ${BW_KERNEL_VECTOR_WIDTH:-} == 1 ]]; then
 fi
 grep -q 'every step ran; the device agrees with the CPU reference' "$out/summary.txt" || fail "summary.txt: not every step ran"
 # tools/gpu-spheric.sh from the same tarball: SPHERIC Test 2 at a coarse spacing for
-# 0.05 s (before the water reaches the box), at two widths: each run's report and
-# the spread over them.
+# 0.05 s (before the water reaches the box), a draw (fluid.seed 3) at two widths:
+# each run's report and the spread over them.
 sph=$work/spheric
 rc=0
 "$src/tools/gpu-spheric.sh" --bundle "$bundle.tar.gz" --out "$sph" --device cpu --spacings 0.04 --diffusion 0.2 \
-  --widths 1,2 --end 0.05 --frames 20 --budget 200 --work "$work/spheric-runs" || rc=$?
+  --widths 1,2 --seeds 3 --end 0.05 --frames 20 --budget 200 --work "$work/spheric-runs" || rc=$?
 [[ $rc -eq 0 ]] || fail "gpu-spheric.sh exited with $rc ($sph/gpu-spheric.log)"
-for f in runs.csv summary.md gpu-spheric.log 0.04/d0.2-w1/sensors.csv 0.04/d0.2-w2/spheric2.md \
+for f in runs.csv summary.md gpu-spheric.log 0.04/d0.2-w1-s3/sensors.csv 0.04/d0.2-w2-s3/spheric2.md \
          0.04/d0.2/spheric2-spread.md; do
   [[ -s $sph/$f ]] || fail "$sph/$f is missing or empty"
 done
-[[ $(awk -F, 'NR > 1 && $1 == "0.04" && $2 == "0.2" && $4 == "0" && $6 == "0.05" && $8 > 9000' "$sph/runs.csv" | wc -l) -eq 2 ]] ||
-  fail "$sph/runs.csv: not two complete runs at 0.04 m to 0.05 s"
+[[ $(awk -F, 'NR > 1 && $1 == "0.04" && $2 == "0.2" && $4 == "0" && $6 == "0.05" && $8 > 9000 && $10 == 3' "$sph/runs.csv" | wc -l) -eq 2 ]] ||
+  fail "$sph/runs.csv: not two complete runs of seed 3 at 0.04 m to 0.05 s"
 grep -q '^| P1 | 2 |' "$sph/0.04/d0.2/spheric2-spread.md" || fail "spheric2-spread.md: no row of P1 over the two runs"
 rc=0
 "$src/tools/gpu-spheric.sh" --bundle "$bundle.tar.gz" --out "$sph" --widths 3 2> "$work/usage.txt" || rc=$?
 [[ $rc -eq 2 ]] && grep -q "widths: '3'" "$work/usage.txt" || fail "gpu-spheric.sh --widths 3: exit $rc, not 2 with the value named"
+rc=0
+"$src/tools/gpu-spheric.sh" --bundle "$bundle.tar.gz" --out "$sph" --seeds 1,x 2> "$work/usage.txt" || rc=$?
+[[ $rc -eq 2 ]] && grep -q "seeds: 'x'" "$work/usage.txt" || fail "gpu-spheric.sh --seeds 1,x: exit $rc, not 2 with the value named"
 
 echo "gpu_check_quick: bundle $(tail -1 "$work/bundle.txt" | sed 's/.*, //'), outputs in $out"
