@@ -277,10 +277,14 @@ TEST(Coupled, MomentumOfFluidAndBodiesBalancesGravityAndWalls) {
   test::figure("impulse of the walls", solver.static_impulse().norm(), "N s");
   test::figure("largest momentum imbalance", worst, "N s");
   test::figure("largest momentum imbalance / impulse of gravity", worst / scale);
-  // Every pair force is applied to both sides with the same float value; what is left
-  // is rounding in the float sums over thousands of particles and steps (measured:
-  // 2e-8 of the gravity impulse).
-  EXPECT_LT(worst, 1e-6 * scale);
+  // Every pair force is applied to both sides with the same float value, but each
+  // side adds it into a float sum of its own some 50 terms, rounded apart: a sum of n
+  // terms keeps up to n u of the forces it balances (u = 2^-24; 50 u = 3e-6), and a
+  // pool at rest rounds the same way step after step, so the error adds up. Measured
+  // 0.7e-6 to 1.9e-6 of gravity's impulse at kernel vector widths 1 to 16 and from
+  // drawn starts (AMD EPYC). A force on one side of a pair only leaves orders more:
+  // a fraction of the walls' impulse.
+  EXPECT_LT(worst, 1e-5 * scale);
 }
 
 // A tank moved as told (`motion`): from rest it speeds up evenly to 0.2 m/s in x over
