@@ -157,12 +157,12 @@ Result run_case(const bw::compute::DeviceInfo& device, int n, bool profile, doub
     const double t0 = solver.time();
     const std::int64_t steps0 = solver.steps();
     while (solver.time() < t0 + simulate_seconds) solver.step(t0 + simulate_seconds);
-    const double wall = clock.seconds();
-    r.wall_per_simulated = wall / simulate_seconds;
+    const double elapsed = clock.seconds();
+    r.wall_per_simulated = elapsed / simulate_seconds;
     std::printf("  simulated %.2f s of the dam break (%lld steps, mean dt %.3g s) in %.1f s: %.0f s of wall time "
                 "per simulated second\n",
                 simulate_seconds, static_cast<long long>(solver.steps() - steps0),
-                simulate_seconds / static_cast<double>(solver.steps() - steps0), wall, wall / simulate_seconds);
+                simulate_seconds / static_cast<double>(solver.steps() - steps0), elapsed, elapsed / simulate_seconds);
   }
   return r;
 }

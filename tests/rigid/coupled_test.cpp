@@ -467,7 +467,7 @@ INSTANTIATE_TEST_SUITE_P(Walls, TurningSquareTank, testing::Values("hydrostatic"
 // flume and reads the waves at gauges).
 TEST(Coupled, PistonWaveMakerPutsInLinearTheorysEnergyFlux) {
   test::TempDir dir;
-  constexpr double kFlumeSpacing = 0.02, kDepth = 0.5, kPeriod = 1.4, kStroke = 0.08, kLength = 4.0, kWidth = 0.08;
+  constexpr double kFlumeSpacing = 0.02, kDepth = 0.5, kPeriod = 1.4, kStroke = 0.08, kLength = 4.0, kFlumeWidth = 0.08;
   constexpr double kPi = std::numbers::pi, kG = 9.81;
   const double omega = 2 * kPi / kPeriod;
   double k = omega * omega / kG;  // omega^2 = g k tanh(k h), by Newton's method
@@ -479,7 +479,7 @@ TEST(Coupled, PistonWaveMakerPutsInLinearTheorysEnergyFlux) {
   const double kh = k * kDepth;
   const double height = kStroke * 2 * (std::cosh(2 * kh) - 1) / (std::sinh(2 * kh) + 2 * kh);
   const double group = 0.5 * omega / k * (1 + 2 * kh / std::sinh(2 * kh));
-  const double flux = 1000 * kG * height * height / 8 * group * kWidth;
+  const double flux = 1000 * kG * height * height / 8 * group * kFlumeWidth;
   // The paddle's displacement r(t) (S / 2) sin(omega t), its amplitude ramped up over
   // one period, r = (1 - cos(pi t / T)) / 2; the keys are its velocity, 40 a period.
   {
@@ -492,8 +492,8 @@ TEST(Coupled, PistonWaveMakerPutsInLinearTheorysEnergyFlux) {
       keys << fmt::format("{:.9g}, {:.9g}, 0, 0\n", t, 0.5 * kStroke * (dr * std::sin(omega * t) + r * omega * std::cos(omega * t)));
     }
   }
-  test::write_open_tank(dir.file("flume.h5"), {kLength, kWidth, 0.7}, 0.04, kFlumeSpacing);
-  test::write_box(dir.file("paddle.h5"), {0.04, kWidth, 0.7}, kFlumeSpacing, false);
+  test::write_open_tank(dir.file("flume.h5"), {kLength, kFlumeWidth, 0.7}, 0.04, kFlumeSpacing);
+  test::write_box(dir.file("paddle.h5"), {0.04, kFlumeWidth, 0.7}, kFlumeSpacing, false);
   std::ofstream(dir.file("flume.toml")) << fmt::format(R"(
 spacing = {0}
 [time]
@@ -515,8 +515,8 @@ particles = "paddle.h5"
 translation = [0.06, 0, 0]
 motion = "piston.csv"
 )",
-                                                       kFlumeSpacing, 3 * kPeriod, kLength + 0.02, kWidth + 0.02, kLength,
-                                                       kWidth, kDepth);
+                                                       kFlumeSpacing, 3 * kPeriod, kLength + 0.02, kFlumeWidth + 0.02, kLength,
+                                                       kFlumeWidth, kDepth);
   const sim::Setup setup = test::prepare_file(dir.file("flume.toml"));
   sim::Solver solver(setup, test::shared_context());
   // Over the two periods after the ramp, before the reflection of the waves' energy

@@ -117,7 +117,9 @@ fields = ["pressure", "density"]
   test::figure("compression the Tait law needs at the bottom", std::pow(1 + expected / k, 1.0 / 7) - 1);
   EXPECT_NEAR(p_fit / expected, 1.0, GetParam().fit_tolerance);
   // A hydrostatic wall pushes as the fluid below would: no density step at the floor.
-  if (GetParam().layer_on_line) EXPECT_NEAR(p_layer / p_fit, 1.0, 0.02);
+  if (GetParam().layer_on_line) {
+    EXPECT_NEAR(p_layer / p_fit, 1.0, 0.02);
+  }
   EXPECT_NEAR(slope / (rho0 * g), 1.0, 0.1);
   EXPECT_LT(error_max, 0.02);
   EXPECT_LT(summary.worst_density_error, 0.05);
@@ -128,7 +130,7 @@ INSTANTIATE_TEST_SUITE_P(Models, Hydrostatic,
                          // settled packing, 1.04 rho0 g here (docs/scene.md, "Density").
                          testing::Values(Model{"Summation", "density = \"summation\"\n", 0.03, false},
                                          Model{"ContinuityHydrostaticWall", "", 0.05, true}),
-                         [](const testing::TestParamInfo<Model>& info) { return std::string(info.param.name); });
+                         [](const testing::TestParamInfo<Model>& model) { return std::string(model.param.name); });
 
 }  // namespace
 }  // namespace bw
