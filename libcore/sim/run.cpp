@@ -32,6 +32,26 @@ constexpr double kFrameSlack = 1e-9;
 // Largest compression (rho / rho0 - 1) the fluid may start with: a block placed one
 // spacing from walls starts below 1e-5; overlapping a solid gives tens of percent.
 constexpr double kMaxInitialCompression = 0.05;
+// A particle nearer than this many spacings to another overlaps it: blocks and
+// solids leave one spacing between particles (less only by a draw's jitter).
+constexpr double kOverlapSpacings = 0.9;
+
+// The distance from fluid particle i of a frame to the nearest other particle, the
+// fluid's or a static solid's.
+double nearest_particle(const FrameData& d, std::size_t i, const ParticleArrays& boundary) {
+  double nearest2 = std::numeric_limits<double>::infinity();
+  const auto scan = [&](const std::vector<float>& x, const std::vector<float>& y, const std::vector<float>& z,
+                        std::size_t skip) {
+    for (std::size_t j = 0; j < x.size(); ++j) {
+      if (j == skip) continue;
+      const double dx = x[j] - d.x[i], dy = y[j] - d.y[i], dz = z[j] - d.z[i];
+      nearest2 = std::min(nearest2, dx * dx + dy * dy + dz * dz);
+    }
+  };
+  scan(d.x, d.y, d.z, i);
+  scan(boundary.x, boundary.y, boundary.z, boundary.x.size());
+  return std::sqrt(nearest2);
+}
 
 int last_frame(double end_time, double frame_rate) {
   return static_cast<int>(std::floor(end_time * frame_rate + kFrameSlack));
@@ -182,6 +202,17 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
   if (!rho.empty()) {
     const auto worst = std::max_element(rho.begin(), rho.end()) - rho.begin();
     const double compression = rho[worst] / s.setup.params.rho0 - 1;
+    const double nearest = compression > kMaxInitialCompression
+                               ? nearest_particle(d, worst, s.setup.boundary.particles) / p.spacing
+                               : 0;
+    // Nothing overlaps there: the kernel reaches past what one layer of boundary
+    // particles is calibrated for (gamma1, a flat wall), as a thin wall's far face.
+    if (compression > kMaxInitialCompression && nearest >= kOverlapSpacings)
+      fail_input("{}: fluid starts {:.0f}% compressed at ({:.4g}, {:.4g}, {:.4g}), though no particle is nearer to it "
+                 "than {:.2g} spacings: smoothing_length {:.4g} m ({:.3g} spacings) takes in more of the solids' "
+                 "boundary particles there than one layer at a flat wall (a wall thinner than that, whose far face "
+                 "counts, or an edge or corner); use a smaller smoothing_length or thicker walls",
+                 scene.path, 100 * compression, d.x[worst], d.y[worst], d.z[worst], nearest, p.h, p.h / p.spacing);
     if (compression > kMaxInitialCompression)
       fail_input("{}: fluid starts {:.0f}% compressed at ({:.4g}, {:.4g}, {:.4g}): a fluid block overlaps a solid or "
                  "another block (fluid rests one spacing from a solid's boundary particles, which bw-sample puts "

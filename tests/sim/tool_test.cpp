@@ -158,6 +158,7 @@ TEST(BwSim, ListsDevicesAndHelps) {
 void expect_bad_input(const std::string& scene_text, const std::string& expected, const std::string& options = "") {
   test::TempDir dir;
   test::write_tank(dir.file("tank.h5"), {4, 4, 4}, 0.01);
+  test::write_thick_tank(dir.file("thick_tank.h5"), {4, 4, 4}, 0.01, 0.02);
   write_frame(FrameData{}, dir.file("frame.h5"));
   std::ofstream(dir.file("scene.toml")) << scene_text;
   const auto r = test::run(bw_sim() + " " + dir.file("scene.toml") + " -o " + dir.file("out") + " " + options);
@@ -171,6 +172,27 @@ void expect_bad_input(const std::string& scene_text, const std::string& expected
 const std::string kGood =
     "spacing = 0.01\n[time]\nend = 0.1\n[domain]\nmin = [-0.01, -0.01, -0.01]\nmax = [0.06, 0.06, 0.06]\n"
     "[[fluid.block]]\nmin = [0.01, 0.01, 0.01]\nmax = [0.03, 0.03, 0.03]\n";
+
+// Fluid filling a tank whose walls are two spacings thick (as examples/spheric2.toml's,
+// sampled on both faces), with `top` among the top-level keys.
+std::string thick_tank_scene(const std::string& top) {
+  return "spacing = 0.01\n" + top +
+         "[time]\nend = 0.02\n[domain]\nmin = [-0.04, -0.04, -0.04]\nmax = [0.08, 0.08, 0.08]\n"
+         "[[fluid.block]]\nmin = [0, 0, 0]\nmax = [0.04, 0.04, 0.04]\n[[solid]]\nparticles = \"thick_tank.h5\"\n";
+}
+
+// Wider than the walls are thick, the kernel takes in their far faces' particles and
+// the fluid starts compressed with nothing overlapping: bw-sim says so, and not that a
+// block overlaps a solid.
+TEST(BwSim, RefusesAKernelWiderThanItsWalls) {
+  test::TempDir dir;
+  test::write_thick_tank(dir.file("thick_tank.h5"), {4, 4, 4}, 0.01, 0.02);
+  std::ofstream(dir.file("scene.toml")) << thick_tank_scene("");
+  const auto ok = test::run(bw_sim() + " " + dir.file("scene.toml") + " -o " + dir.file("out"));
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;  // at the default 2 spacings
+  expect_bad_input(thick_tank_scene("smoothing_length = 0.04\n"),
+                   "though no particle is nearer to it than 1 spacings: smoothing_length 0.04 m (4 spacings)");
+}
 
 TEST(BwSim, BadInputsExitWithTwoAndWriteNothing) {
   expect_bad_input("colour = 1\n" + kGood, "scene.toml: colour: unknown key");
