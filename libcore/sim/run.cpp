@@ -32,9 +32,9 @@ constexpr double kFrameSlack = 1e-9;
 // Largest compression (rho / rho0 - 1) the fluid may start with: a block placed one
 // spacing from walls starts below 1e-5; overlapping a solid gives tens of percent.
 constexpr double kMaxInitialCompression = 0.05;
-// A particle nearer than this many spacings to another overlaps it: blocks and
-// solids leave one spacing between particles (less only by a draw's jitter).
-constexpr double kOverlapSpacings = 0.9;
+// Blocks and solids leave one spacing between particles, a draw's jitter up to twice
+// its offset less: a particle nearer than that, less this margin, overlaps another.
+constexpr double kOverlapMargin = 0.05;
 
 // The distance from fluid particle i of a frame to the nearest other particle, the
 // fluid's or a static solid's.
@@ -207,7 +207,8 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
                                : 0;
     // Nothing overlaps there: the kernel reaches past what one layer of boundary
     // particles is calibrated for (gamma1, a flat wall), as a thin wall's far face.
-    if (compression > kMaxInitialCompression && nearest >= kOverlapSpacings)
+    const double jitter = scene.fluid.seed > 0 ? scene.fluid.jitter : 0;
+    if (compression > kMaxInitialCompression && nearest >= 1 - 2 * jitter - kOverlapMargin)
       fail_input("{}: fluid starts {:.0f}% compressed at ({:.4g}, {:.4g}, {:.4g}), though no particle is nearer to it "
                  "than {:.2g} spacings: smoothing_length {:.4g} m ({:.3g} spacings) takes in more of the solids' "
                  "boundary particles there than one layer at a flat wall (a wall thinner than that, whose far face "
