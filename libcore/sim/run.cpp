@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <limits>
 #include <regex>
+#include <unordered_map>
 
 #include <csignal>
 #include <cstdio>
@@ -36,21 +37,36 @@ constexpr double kMaxInitialCompression = 0.05;
 // its offset less: a particle nearer than that, less this margin, overlaps another.
 constexpr double kOverlapMargin = 0.05;
 
-// The distance from fluid particle i of a frame to the nearest other particle, the
-// fluid's or a static solid's.
-double nearest_particle(const FrameData& d, std::size_t i, const ParticleArrays& boundary) {
-  double nearest2 = std::numeric_limits<double>::infinity();
-  const auto scan = [&](const std::vector<float>& x, const std::vector<float>& y, const std::vector<float>& z,
-                        std::size_t skip) {
-    for (std::size_t j = 0; j < x.size(); ++j) {
-      if (j == skip) continue;
-      const double dx = x[j] - d.x[i], dy = y[j] - d.y[i], dz = z[j] - d.z[i];
-      nearest2 = std::min(nearest2, dx * dx + dy * dy + dz * dz);
-    }
+// The smallest distance from a fluid particle of a frame to another particle, the
+// fluid's or a static solid's, among those nearer than `reach` (`reach` when none is).
+double nearest_pair(const FrameData& d, const ParticleArrays& boundary, double reach) {
+  const std::size_t nf = d.x.size();
+  const auto point = [&](std::size_t k) {
+    return k < nf ? Vec3d(d.x[k], d.y[k], d.z[k]) : Vec3d(boundary.x[k - nf], boundary.y[k - nf], boundary.z[k - nf]);
   };
-  scan(d.x, d.y, d.z, i);
-  scan(boundary.x, boundary.y, boundary.z, boundary.x.size());
-  return std::sqrt(nearest2);
+  const auto cell_of = [&](const Vec3d& x) { return (x / reach).array().floor().cast<std::int64_t>().eval(); };
+  const auto key = [](std::int64_t i, std::int64_t j, std::int64_t k) {
+    return static_cast<std::uint64_t>(((i & 0x1fffff) << 42) | ((j & 0x1fffff) << 21) | (k & 0x1fffff));
+  };
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells;
+  for (std::size_t k = 0; k < nf + boundary.size(); ++k) {
+    const auto c = cell_of(point(k));
+    cells[key(c[0], c[1], c[2])].push_back(k);
+  }
+  double nearest = reach;
+  for (std::size_t i = 0; i < nf; ++i) {
+    const Vec3d xi = point(i);
+    const auto c = cell_of(xi);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const auto found = cells.find(key(c[0] + dx, c[1] + dy, c[2] + dz));
+          if (found == cells.end()) continue;
+          for (std::size_t k : found->second)
+            if (k != i) nearest = std::min(nearest, (point(k) - xi).norm());
+        }
+  }
+  return nearest;
 }
 
 int last_frame(double end_time, double frame_rate) {
@@ -202,17 +218,17 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
   if (!rho.empty()) {
     const auto worst = std::max_element(rho.begin(), rho.end()) - rho.begin();
     const double compression = rho[worst] / s.setup.params.rho0 - 1;
-    const double nearest = compression > kMaxInitialCompression
-                               ? nearest_particle(d, worst, s.setup.boundary.particles) / p.spacing
-                               : 0;
-    // Nothing overlaps there: the kernel reaches past what one layer of boundary
-    // particles is calibrated for (gamma1, a flat wall), as a thin wall's far face.
+    // No two particles nearer than a lattice leaves them: the kernel reaches past what one
+    // layer of boundary particles is calibrated for (gamma1, a flat wall), as a thin wall's far face.
     const double jitter = scene.fluid.seed > 0 ? scene.fluid.jitter : 0;
+    const double nearest = compression > kMaxInitialCompression
+                               ? nearest_pair(d, s.setup.boundary.particles, p.spacing) / p.spacing
+                               : 0;
     if (compression > kMaxInitialCompression && nearest >= 1 - 2 * jitter - kOverlapMargin)
-      fail_input("{}: fluid starts {:.0f}% compressed at ({:.4g}, {:.4g}, {:.4g}), though no particle is nearer to it "
-                 "than {:.2g} spacings: smoothing_length {:.4g} m ({:.3g} spacings) takes in more of the solids' "
+      fail_input("{}: fluid starts {:.0f}% compressed at ({:.4g}, {:.4g}, {:.4g}), though no two particles are "
+                 "nearer than {:.2g} spacings: smoothing_length {:.4g} m ({:.3g} spacings) takes in more of the solids' "
                  "boundary particles there than one layer at a flat wall (a wall thinner than that, whose far face "
-                 "counts, or an edge or corner); use a smaller smoothing_length or thicker walls",
+                 "counts); use a smaller smoothing_length or thicker walls",
                  scene.path, 100 * compression, d.x[worst], d.y[worst], d.z[worst], nearest, p.h, p.h / p.spacing);
     if (compression > kMaxInitialCompression)
       fail_input("{}: fluid starts {:.0f}% compressed at ({:.4g}, {:.4g}, {:.4g}): a fluid block overlaps a solid or "

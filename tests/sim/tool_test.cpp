@@ -191,12 +191,12 @@ TEST(BwSim, RefusesAKernelWiderThanItsWalls) {
   const auto ok = test::run(bw_sim() + " " + dir.file("scene.toml") + " -o " + dir.file("out"));
   EXPECT_EQ(ok.exit_code, 0) << ok.err;  // at the default 2 spacings
   expect_bad_input(thick_tank_scene("smoothing_length = 0.04\n"),
-                   "though no particle is nearer to it than 1 spacings: smoothing_length 0.04 m (4 spacings)");
-  // A draw's largest jitter brings neighbours as near as 0.8 spacings (in draw 7 the worst
-  // particle has one nearer than 0.95): still no overlap.
+                   "though no two particles are nearer than 1 spacings: smoothing_length 0.04 m (4 spacings)");
+  // A draw's largest jitter brings neighbours as near as 0.8 spacings (draw 7's nearest
+  // two are nearer than 0.95): still no overlap.
   std::string drawn = thick_tank_scene("smoothing_length = 0.04\n");
   drawn.insert(drawn.find("[[fluid.block]]"), "[fluid]\nseed = 7\njitter = 0.1\n");
-  expect_bad_input(drawn, "though no particle is nearer to it than 0.");
+  expect_bad_input(drawn, "though no two particles are nearer than 0.");
 }
 
 TEST(BwSim, BadInputsExitWithTwoAndWriteNothing) {
