@@ -197,6 +197,14 @@ TEST(BwSim, RefusesAKernelWiderThanItsWalls) {
   std::string drawn = thick_tank_scene("smoothing_length = 0.04\n");
   drawn.insert(drawn.find("[[fluid.block]]"), "[fluid]\nseed = 7\njitter = 0.1\n");
   expect_bad_input(drawn, "though no two particles are nearer than 0.");
+  // Walls 4.5 spacings thick put the inner faces' particles on the faces, half a spacing
+  // from the fluid: an overlap, whichever particle the kernel compresses most.
+  test::TempDir odd;
+  test::write_thick_tank(odd.file("thick_tank.h5"), {4, 4, 4}, 0.01, 0.045);
+  std::ofstream(odd.file("scene.toml")) << thick_tank_scene("smoothing_length = 0.035\n");
+  const auto overlap = test::run(bw_sim() + " " + odd.file("scene.toml") + " -o " + odd.file("out"));
+  EXPECT_EQ(overlap.exit_code, 2);
+  EXPECT_NE(overlap.err.find("a fluid block overlaps a solid"), std::string::npos) << overlap.err;
 }
 
 TEST(BwSim, BadInputsExitWithTwoAndWriteNothing) {
