@@ -4,10 +4,12 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <utility>
+#include <vector>
 #include <regex>
-#include <unordered_map>
 
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 
 #include <unistd.h>
@@ -39,6 +41,8 @@ constexpr double kOverlapMargin = 0.05;
 
 // The smallest distance from a fluid particle of a frame to another particle, the
 // fluid's or a static solid's, among those nearer than `reach` (`reach` when none is).
+// The particles are sorted by cells of edge `reach` (16 bytes each), and each fluid
+// particle looks in the 27 cells around its own.
 double nearest_pair(const FrameData& d, const ParticleArrays& boundary, double reach) {
   const std::size_t nf = d.x.size();
   const auto point = [&](std::size_t k) {
@@ -48,11 +52,12 @@ double nearest_pair(const FrameData& d, const ParticleArrays& boundary, double r
   const auto key = [](std::int64_t i, std::int64_t j, std::int64_t k) {
     return static_cast<std::uint64_t>(((i & 0x1fffff) << 42) | ((j & 0x1fffff) << 21) | (k & 0x1fffff));
   };
-  std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells;
-  for (std::size_t k = 0; k < nf + boundary.size(); ++k) {
+  std::vector<std::pair<std::uint64_t, std::size_t>> sorted(nf + boundary.size());
+  for (std::size_t k = 0; k < sorted.size(); ++k) {
     const auto c = cell_of(point(k));
-    cells[key(c[0], c[1], c[2])].push_back(k);
+    sorted[k] = {key(c[0], c[1], c[2]), k};
   }
+  std::sort(sorted.begin(), sorted.end());
   double nearest = reach;
   for (std::size_t i = 0; i < nf; ++i) {
     const Vec3d xi = point(i);
@@ -60,10 +65,10 @@ double nearest_pair(const FrameData& d, const ParticleArrays& boundary, double r
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
-          const auto found = cells.find(key(c[0] + dx, c[1] + dy, c[2] + dz));
-          if (found == cells.end()) continue;
-          for (std::size_t k : found->second)
-            if (k != i) nearest = std::min(nearest, (point(k) - xi).norm());
+          const std::uint64_t cell = key(c[0] + dx, c[1] + dy, c[2] + dz);
+          auto at = std::lower_bound(sorted.begin(), sorted.end(), std::pair<std::uint64_t, std::size_t>{cell, 0});
+          for (; at != sorted.end() && at->first == cell; ++at)
+            if (at->second != i) nearest = std::min(nearest, (point(at->second) - xi).norm());
         }
   }
   return nearest;
