@@ -4,9 +4,9 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <regex>
 #include <utility>
 #include <vector>
-#include <regex>
 
 #include <csignal>
 #include <cstdint>
@@ -223,23 +223,22 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
   if (!rho.empty()) {
     const auto worst = std::max_element(rho.begin(), rho.end()) - rho.begin();
     const double compression = rho[worst] / s.setup.params.rho0 - 1;
-    // No two particles nearer than a lattice leaves them: the kernel reaches past what one
-    // layer of boundary particles is calibrated for (gamma1, a flat wall), as a thin wall's far face.
-    const double jitter = scene.fluid.seed > 0 ? scene.fluid.jitter : 0;
-    const double nearest = compression > kMaxInitialCompression
-                               ? nearest_pair(d, s.setup.boundary.particles, p.spacing) / p.spacing
-                               : 0;
-    if (compression > kMaxInitialCompression && nearest >= 1 - 2 * jitter - kOverlapMargin)
-      fail_input("{}: fluid starts {:.0f}% compressed at ({:.4g}, {:.4g}, {:.4g}), though no two particles are "
-                 "nearer than {:.2g} spacings: smoothing_length {:.4g} m ({:.3g} spacings) takes in more of the solids' "
-                 "boundary particles there than one layer at a flat wall (a wall thinner than that, whose far face "
-                 "counts); use a smaller smoothing_length or thicker walls",
-                 scene.path, 100 * compression, d.x[worst], d.y[worst], d.z[worst], nearest, p.h, p.h / p.spacing);
-    if (compression > kMaxInitialCompression)
+    if (compression > kMaxInitialCompression) {
+      // No two particles nearer than a lattice leaves them: the kernel reaches past what one
+      // layer of boundary particles is calibrated for (gamma1, a flat wall), as a thin wall's far face.
+      const double jitter = scene.fluid.seed > 0 ? scene.fluid.jitter : 0;
+      const double nearest = nearest_pair(d, s.setup.boundary.particles, p.spacing) / p.spacing;
+      if (nearest >= 1 - 2 * jitter - kOverlapMargin)
+        fail_input("{}: fluid starts {:.0f}% compressed at ({:.4g}, {:.4g}, {:.4g}), though no two particles are "
+                   "nearer than {:.2g} spacings: smoothing_length {:.4g} m ({:.3g} spacings) takes in more of the "
+                   "solids' boundary particles there than one layer at a flat wall (a wall thinner than that, whose "
+                   "far face counts); use a smaller smoothing_length or thicker walls",
+                   scene.path, 100 * compression, d.x[worst], d.y[worst], d.z[worst], nearest, p.h, p.h / p.spacing);
       fail_input("{}: fluid starts {:.0f}% compressed at ({:.4g}, {:.4g}, {:.4g}): a fluid block overlaps a solid or "
                  "another block (fluid rests one spacing from a solid's boundary particles, which bw-sample puts "
                  "within half a spacing of the mesh's faces)",
                  scene.path, 100 * compression, d.x[worst], d.y[worst], d.z[worst]);
+    }
   }
   if (s.resuming) read_checkpoint_state(checkpoint_path(s.options.output), *s.solver);
 }
