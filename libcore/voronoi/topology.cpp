@@ -2,29 +2,16 @@
 #include <algorithm>
 #include <numeric>
 
+#include "common/union_find.h"
 #include "voronoi/check.h"
 
 namespace bw::voronoi {
 namespace {
 
-struct UnionFind {
-  std::vector<std::uint32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
-
 struct EdgeUse {
   std::uint64_t key;          // (smaller vertex << 32) | larger vertex
-  std::uint32_t corner_low;   // the face's corner at the smaller vertex
-  std::uint32_t corner_high;  // and at the larger one
+  std::int32_t corner_low;    // the face's corner at the smaller vertex
+  std::int32_t corner_high;   // and at the larger one
   bool operator<(const EdgeUse& o) const { return key < o.key; }
 };
 
@@ -43,7 +30,7 @@ std::size_t count_nonmanifold_vertices(const TriMesh& mesh) {
     for (int k = 0; k < 3; ++k) {
       const auto a = static_cast<std::uint32_t>(t[k]), b = static_cast<std::uint32_t>(t[(k + 1) % 3]);
       if (a == b) continue;
-      const auto ca = static_cast<std::uint32_t>(3 * f + k), cb = static_cast<std::uint32_t>(3 * f + (k + 1) % 3);
+      const auto ca = static_cast<std::int32_t>(3 * f + k), cb = static_cast<std::int32_t>(3 * f + (k + 1) % 3);
       if (a < b) edges.push_back({(std::uint64_t{a} << 32) | b, ca, cb});
       else edges.push_back({(std::uint64_t{b} << 32) | a, cb, ca});
     }
@@ -54,13 +41,13 @@ std::size_t count_nonmanifold_vertices(const TriMesh& mesh) {
     corners.unite(edges[i].corner_low, edges[i - 1].corner_low);
     corners.unite(edges[i].corner_high, edges[i - 1].corner_high);
   }
-  constexpr std::uint32_t kNone = ~0u;
-  std::vector<std::uint32_t> group(mesh.vertices.size(), kNone);
+  constexpr std::int32_t kNone = -1;
+  std::vector<std::int32_t> group(mesh.vertices.size(), kNone);
   std::vector<bool> bad(mesh.vertices.size(), false);
   for (std::size_t f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
       const auto v = static_cast<std::size_t>(mesh.triangles[f][k]);
-      const std::uint32_t root = corners.find(static_cast<std::uint32_t>(3 * f + k));
+      const std::int32_t root = corners.find(static_cast<std::int32_t>(3 * f + k));
       if (group[v] == kNone) group[v] = root;
       else if (group[v] != root) bad[v] = true;
     }
