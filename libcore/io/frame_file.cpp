@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "io/arrays.h"
 #include "io/h5.h"
 
 namespace bw {
@@ -21,19 +22,6 @@ h5::Group open_step(const h5::File& file, std::int32_t frame) {
   return root.open_group(old_name);
 }
 
-std::vector<double> flatten(const std::vector<Vec3d>& v) {
-  std::vector<double> flat(3 * v.size());
-  for (std::size_t i = 0; i < v.size(); ++i)
-    for (int k = 0; k < 3; ++k) flat[3 * i + k] = v[i][k];
-  return flat;
-}
-
-std::vector<Vec3d> unflatten(const std::vector<double>& flat) {
-  std::vector<Vec3d> v(flat.size() / 3);
-  for (std::size_t i = 0; i < v.size(); ++i) v[i] = Vec3d(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
-  return v;
-}
-
 template <class T>
 void read_optional(const h5::Group& step, const char* name, std::size_t n, std::vector<T>& out) {
   if (!step.has(name)) return;
@@ -47,7 +35,7 @@ BodyStates read_bodies(const h5::Group& g) {
   std::size_t m = 0, rows = 0;
   b.id = g.read_rows<std::int32_t>("id", 0, &m);
   auto read3 = [&](const char* name) {
-    auto v = unflatten(g.read_rows<double>(name, 3, &rows));
+    auto v = io::unflatten_points(g.read_rows<double>(name, 3, &rows));
     if (rows != m) fail_input("{}: {} rows, expected {}", g.where(name), rows, m);
     return v;
   };
@@ -116,7 +104,7 @@ void write_frame(const FrameData& f, const std::string& path) {
     const std::uint64_t m = b.size();
     h5::Group bodies = step.create_group("bodies");
     bodies.write<std::int32_t>("id", b.id);
-    bodies.write<double>("position", flatten(b.position), {m, 3});
+    bodies.write<double>("position", io::flatten(b.position), {m, 3});
     std::vector<double> q(4 * m);
     for (std::size_t i = 0; i < m; ++i) {
       q[4 * i] = b.orientation[i].w();
@@ -125,8 +113,8 @@ void write_frame(const FrameData& f, const std::string& path) {
       q[4 * i + 3] = b.orientation[i].z();
     }
     bodies.write<double>("orientation", q, {m, 4});
-    bodies.write<double>("linear_velocity", flatten(b.linear_velocity), {m, 3});
-    bodies.write<double>("angular_velocity", flatten(b.angular_velocity), {m, 3});
+    bodies.write<double>("linear_velocity", io::flatten(b.linear_velocity), {m, 3});
+    bodies.write<double>("angular_velocity", io::flatten(b.angular_velocity), {m, 3});
   }
   file.commit();
 }

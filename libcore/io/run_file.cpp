@@ -6,6 +6,7 @@
 
 #include "common/error.h"
 #include "common/text.h"
+#include "io/arrays.h"
 #include "io/h5.h"
 #include "io/particles_file.h"
 
@@ -20,19 +21,6 @@ std::vector<T> column(const std::vector<Row>& rows, Get get) {
   out.reserve(rows.size());
   for (const Row& r : rows) out.push_back(static_cast<T>(get(r)));
   return out;
-}
-
-std::vector<double> flatten(const std::vector<Vec3d>& v) {
-  std::vector<double> flat(3 * v.size());
-  for (std::size_t i = 0; i < v.size(); ++i)
-    for (int k = 0; k < 3; ++k) flat[3 * i + k] = v[i][k];
-  return flat;
-}
-
-std::vector<Vec3d> unflatten(const std::vector<double>& flat) {
-  std::vector<Vec3d> v(flat.size() / 3);
-  for (std::size_t i = 0; i < v.size(); ++i) v[i] = Vec3d(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
-  return v;
 }
 
 }  // namespace
@@ -106,7 +94,7 @@ void write_run(const RunRecord& run, const std::string& path) {
     centers.push_back(b[i].reference_center);
   }
   bodies.write<double>("inertia", inertia, {nb, 9});
-  bodies.write<double>("reference_center", flatten(centers), {nb, 3});
+  bodies.write<double>("reference_center", io::flatten(centers), {nb, 3});
 
   h5::Group fracture = root.create_group("fracture");
   std::vector<double> time;
@@ -134,7 +122,7 @@ void write_run(const RunRecord& run, const std::string& path) {
   fracture.write("seed_count", seed_count);
   fracture.write("child_offset", child_offset);
   fracture.write("child_count", child_count);
-  fracture.write<double>("seeds", flatten(seeds), {seeds.size(), 3});
+  fracture.write<double>("seeds", io::flatten(seeds), {seeds.size(), 3});
   fracture.write("child_body", child_body);
   fracture.write("child_seed", child_seed);
   fracture.write("child_component", child_component);
@@ -146,7 +134,7 @@ void write_run(const RunRecord& run, const std::string& path) {
       if (row.size() != nsolids) fail_run("{}: load rows of {} and {} solids", path, nsolids, row.size());
       impulse.insert(impulse.end(), row.begin(), row.end());
     }
-    loads.write<double>("impulse", flatten(impulse), {run.loads.size(), nsolids, 3});
+    loads.write<double>("impulse", io::flatten(impulse), {run.loads.size(), nsolids, 3});
   }
   if (!run.sensors.names.empty()) {
     const SensorRecord& r = run.sensors;
@@ -159,8 +147,8 @@ void write_run(const RunRecord& run, const std::string& path) {
     for (std::size_t i = 0; i < ns; ++i) name_lines += (i ? "\n" : "") + r.names[i];
     sensors.set_attr("names", name_lines);
     sensors.set_attr<double>("interval", r.interval);
-    sensors.write<double>("at", flatten(r.at), {ns, 3});
-    sensors.write<double>("normal", flatten(r.normal), {ns, 3});
+    sensors.write<double>("at", io::flatten(r.at), {ns, 3});
+    sensors.write<double>("normal", io::flatten(r.normal), {ns, 3});
     sensors.write("radius", r.radius);
     sensors.write("particles", r.particles);
     std::vector<double> middle(r.samples());
@@ -328,8 +316,8 @@ RunRecord read_run(const std::string& path) {
                    columns);
       return v;
     };
-    r.at = unflatten(table("at", count, 3));
-    r.normal = unflatten(table("normal", count, 3));
+    r.at = io::unflatten_points(table("at", count, 3));
+    r.normal = io::unflatten_points(table("normal", count, 3));
     r.radius = sensors.read<double>("radius");
     r.particles = sensors.read<std::int64_t>("particles");
     r.pressure = table("pressure", 0, count);
