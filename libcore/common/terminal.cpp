@@ -4,6 +4,10 @@
 
 #include <cstdio>
 
+#include <fmt/format.h>
+
+#include "common/text.h"
+
 namespace bw {
 
 bool stderr_is_terminal() { return ::isatty(STDERR_FILENO) == 1; }
@@ -30,6 +34,13 @@ void ProgressLine::clear() {
   std::fprintf(stderr, "\r%*s\r", static_cast<int>(last_width_), "");
   std::fflush(stderr);
   last_width_ = 0;
+}
+
+std::string frame_progress_text(const std::string& tool, int frame, std::size_t done, std::size_t total,
+                                double seconds) {
+  const double per_frame = done > 0 ? seconds / static_cast<double>(done) : 0.0;
+  return fmt::format("{}: frame {:06d} ({}/{}), {:.0f} ms per frame, {} left", tool, frame, done, total,
+                     1000 * per_frame, human_duration(per_frame * static_cast<double>(total - done)));
 }
 
 }  // namespace bw

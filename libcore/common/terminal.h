@@ -32,6 +32,11 @@ class ProgressLine {
   std::chrono::steady_clock::time_point last_draw_{};
 };
 
+// "TOOL: frame 000042 (3/10), 120 ms per frame, 1 s left": the line of a tool that
+// works through frames, `seconds` spent on the `done` of `total` so far.
+std::string frame_progress_text(const std::string& tool, int frame, std::size_t done, std::size_t total,
+                                double seconds);
+
 // Wall-clock stopwatch in seconds.
 class Stopwatch {
  public:

@@ -120,11 +120,7 @@ int main(int argc, char** argv) {
     const bw::exporter::ExportJob job = o.job();
     bw::ProgressLine progress(!o.quiet);
     const auto report = bw::exporter::run_export(job, [&](const bw::exporter::ExportProgress& p) {
-      const double per_frame = p.seconds / static_cast<double>(p.done);
-      progress.update(fmt::format("bw-export: frame {:06d} ({}/{}), {:.0f} ms per frame, {} left", p.frame, p.done,
-                                  p.total, 1000 * per_frame,
-                                  bw::human_duration(per_frame * static_cast<double>(p.total - p.done))),
-                      p.done == p.total);
+      progress.update(bw::frame_progress_text("bw-export", p.frame, p.done, p.total, p.seconds), p.done == p.total);
     });
     progress.clear();
     if (!o.quiet) print_summary(o, report);

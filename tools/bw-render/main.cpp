@@ -132,11 +132,7 @@ int main(int argc, char** argv) {
     const bw::render::SequenceJob job = o.job();
     bw::ProgressLine progress(!o.quiet);
     const auto report = bw::render::render_sequence(job, [&](const bw::render::SequenceProgress& p) {
-      const double per_frame = p.render_seconds / static_cast<double>(p.done);
-      progress.update(fmt::format("bw-render: frame {:06d} ({}/{}), {:.0f} ms per frame, {} left", p.frame, p.done,
-                                  p.total, 1000 * per_frame,
-                                  bw::human_duration(per_frame * static_cast<double>(p.total - p.done))),
-                      p.done == p.total);
+      progress.update(bw::frame_progress_text("bw-render", p.frame, p.done, p.total, p.render_seconds), p.done == p.total);
     });
     progress.clear();
     if (!o.quiet) print_summary(o, job, report);
