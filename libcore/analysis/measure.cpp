@@ -2,27 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <limits>
 #include <numbers>
-#include <regex>
 
 #include "common/error.h"
+#include "io/frame_range.h"
 
 namespace bw::analysis {
-namespace fs = std::filesystem;
 
 std::vector<std::string> list_frames(const std::string& folder) {
-  std::error_code ec;
-  if (!fs::is_directory(folder, ec)) fail_input("{}: not a folder of frames", folder);
-  static const std::regex frame_name(R"(\d{6}\.h5)");
   std::vector<std::string> frames;
-  for (const auto& entry : fs::directory_iterator(folder)) {
-    const std::string name = entry.path().filename().string();
-    if (entry.is_regular_file() && std::regex_match(name, frame_name)) frames.push_back(entry.path().string());
-  }
-  if (frames.empty()) fail_input("{}: holds no frame files (NNNNNN.h5)", folder);
-  std::sort(frames.begin(), frames.end());
+  for (const auto& [number, path] : require_frame_files(folder)) frames.push_back(path);
   return frames;
 }
 

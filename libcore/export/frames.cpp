@@ -8,14 +8,8 @@
 
 namespace bw::exporter {
 
-std::map<int, std::string> list_frames(const std::string& dir) {
-  std::map<int, std::string> frames = frame_files(dir);
-  if (frames.empty()) fail_input("{}: holds no frame files (NNNNNN.h5)", dir);
-  return frames;
-}
-
 std::vector<FrameRef> resolve_frames(const std::string& dir, const FrameRange& range) {
-  const std::map<int, std::string> frames = list_frames(dir);
+  const std::map<int, std::string> frames = require_frame_files(dir);
   const int first = range.first.value_or(frames.begin()->first);
   const int last = range.last.value_or(frames.rbegin()->first);
   if (first > last) fail_input("{}: the range {}:{} is empty", dir, first, last);

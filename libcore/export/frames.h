@@ -15,10 +15,6 @@ namespace bw::exporter {
 using bw::FrameRange;
 using bw::parse_frame_range;
 
-// Frame files of a folder by number: NNNNNN.h5 (digits only). Throws InputError when
-// the folder does not exist or holds none.
-std::map<int, std::string> list_frames(const std::string& dir);
-
 struct FrameRef {
   int number = 0;
   std::string path;

@@ -51,16 +51,30 @@ FrameRange parse_frame_range(const std::string& text) {
 
 std::map<int, std::string> frame_files(const std::string& dir) {
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) fail_input("{}: no such folder of frames", dir);
+  if (!fs::is_directory(dir, ec)) {
+    if (fs::exists(dir, ec)) fail_input("{}: is a file, not a folder of frames (bw-sim's OUTDIR/frames)", dir);
+    fail_input("{}: no such folder of frames", dir);
+  }
   std::map<int, std::string> frames;
   for (const auto& entry : fs::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
-    if (name.size() < 4 || name.substr(name.size() - 3) != ".h5") continue;
+    if (name.size() < 4 || name.substr(name.size() - 3) != ".h5" || !entry.is_regular_file(ec)) continue;
     const std::string stem = name.substr(0, name.size() - 3);
     if (!std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; })) continue;
     if (auto n = parse_int(stem)) frames[*n] = entry.path().string();
   }
   return frames;
+}
+
+std::map<int, std::string> require_frame_files(const std::string& dir) {
+  std::map<int, std::string> frames = frame_files(dir);
+  if (!frames.empty()) return frames;
+  // A run's folder given for its frames: the likeliest slip, so the error names the fix.
+  const fs::path inner = fs::path(dir) / "frames";
+  std::error_code ec;
+  if (fs::is_directory(inner, ec) && !frame_files(inner.string()).empty())
+    fail_input("{}: holds no frame files (NNNNNN.h5); its frames folder does: give {}", dir, inner.string());
+  fail_input("{}: holds no frame files (NNNNNN.h5)", dir);
 }
 
 }  // namespace bw

@@ -22,7 +22,11 @@ struct FrameRange {
 FrameRange parse_frame_range(const std::string& text);
 
 // Frame files of a folder by number: NNNNNN.h5 (digits only); empty when there is
-// none. Throws InputError when the folder does not exist.
+// none. Throws InputError when the path is a file or does not exist.
 std::map<int, std::string> frame_files(const std::string& dir);
+
+// The same, and throws InputError when the folder holds no frame file; when it is a
+// bw-sim output folder, whose frames are in its frames/ folder, the error says so.
+std::map<int, std::string> require_frame_files(const std::string& dir);
 
 }  // namespace bw

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <functional>
 #include <filesystem>
-#include <regex>
 #include <set>
 
 #include <fmt/format.h>
@@ -11,6 +10,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "io/fragments_file.h"
+#include "io/frame_range.h"
 #include "io/h5.h"
 #include "io/particles_file.h"
 #include "io/run_file.h"
@@ -152,15 +152,9 @@ RunIndex scan_run(const std::string& outdir) {
   const fs::path folder = fs::path(outdir) / "frames";
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) fail_input("{}: no frames folder (is {} a bw-sim output folder?)", folder.string(), outdir);
-  static const std::regex pattern("[0-9]{6}\\.h5");
-  std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(folder, ec))
-    if (entry.is_regular_file() && std::regex_match(entry.path().filename().string(), pattern))
-      names.push_back(entry.path().filename().string());
-  std::sort(names.begin(), names.end());
   RunIndex index;
-  for (const std::string& name : names)
-    index.frames.push_back(index_frame(read_frame_header((folder / name).string()), "frames/" + name));
+  for (const auto& [number, path] : frame_files(folder.string()))
+    index.frames.push_back(index_frame(read_frame_header(path), "frames/" + fs::path(path).filename().string()));
   if (index.frames.empty()) fail_input("{}: holds no frame files (NNNNNN.h5)", folder.string());
   return index;
 }

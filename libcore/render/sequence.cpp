@@ -78,10 +78,7 @@ Camera parse_camera(const std::string& text) {
 
 SequencePlan plan_sequence(const SequenceJob& job) {
   SequencePlan plan;
-  std::error_code ec;
-  if (!fs::is_directory(job.frames_dir, ec)) fail_input("{}: no such folder of frames", job.frames_dir);
-  const std::map<int, std::string> frames = frame_files(job.frames_dir);
-  if (frames.empty()) fail_input("{}: holds no frame files (NNNNNN.h5)", job.frames_dir);
+  const std::map<int, std::string> frames = require_frame_files(job.frames_dir);
   for (const auto& [number, path] : frames) {
     if (static_cast<int>(plan.reference_frames.size()) == kReferenceScan) break;
     plan.reference_frames.push_back(path);
@@ -109,6 +106,7 @@ SequencePlan plan_sequence(const SequenceJob& job) {
   }
   if (job.fps > 0) plan.fps = job.fps;
 
+  std::error_code ec;
   plan.run_path = job.run_path;
   if (plan.run_path.empty()) {
     const fs::path guess = fs::path(job.frames_dir) / ".." / "run.h5";
