@@ -161,6 +161,12 @@ struct Scene {
   double sensor_rate = 1000;       // output.sensor_rate: samples per second of each sensor (Hz)
 };
 
+// Checks an end time given for a run of `s` in place of its time.end (bw-sim
+// --end-time) against the limits the scene's own is held to: at least one frame, at
+// most as many frames and sensor samples as a run file holds. Throws InputError
+// naming `what`, where the time came from.
+void check_end_time(const Scene& s, double end, const std::string& what);
+
 // Reads and checks a scene file. Throws InputError "<path>: <key>: <problem>".
 // `overrides` ("KEY=VALUE", bw-sim --set; scene/overrides.h) replace keys of the file
 // before it is checked; Scene::text is then the effective scene as TOML, headed by a

@@ -133,10 +133,9 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
   Impl& s = *impl_;
   s.scene = scene;
   s.options = std::move(options);
-  s.end_time = s.options.end_time > 0 ? s.options.end_time : scene.time.end;
-  if (last_frame(s.end_time, scene.time.frame_rate) < 1)
-    fail_input("{}: time.end: {} s is shorter than one frame at {} frames per second", scene.path, s.end_time,
-               scene.time.frame_rate);
+  const bool end_from_option = s.options.end_time > 0;
+  s.end_time = end_from_option ? s.options.end_time : scene.time.end;
+  scene::check_end_time(scene, s.end_time, end_from_option ? std::string("--end-time") : scene.path + ": time.end");
   if (s.options.output.empty()) fail_input("no output folder given (-o OUTDIR)");
   const fs::path out(s.options.output);
   std::error_code ec;

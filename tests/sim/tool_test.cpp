@@ -225,6 +225,15 @@ TEST(BwSim, BadInputsExitWithTwoAndWriteNothing) {
   expect_bad_input(kGood, "--device: 'fastest'", "--device fastest");
   expect_bad_input(kGood, "--device 99", "--device 99");
   expect_bad_input(kGood, "--end-time", "--end-time -1");
+  // An end time on the command line is held to the scene's limits, and named as given
+  // (at 60 frames a second, 1e9 s overflows a frame count).
+  expect_bad_input(kGood, "--end-time: 1000000000 s at 60 frames per second is more than 1000000 frames",
+                   "--end-time 1e9");
+  expect_bad_input(kGood, "--end-time: 0.01 s is shorter than one frame", "--end-time 0.01");
+  expect_bad_input(kGood + "[[sensor]]\nname = \"floor\"\nat = [0.02, 0.02, 0]\nradius = 0.01\n"
+                           "[output]\nsensor_rate = 100000\n",
+                   "--end-time: 1000 s at 100000 sensor samples per second is more than 10000000 samples",
+                   "--end-time 1000");
   // A fixed step between the diffusion's limit (2.3e-4 s at delta 1) and the CFL limit (6e-4 s).
   expect_bad_input(kGood + "[fluid]\ndiffusion = 1\n", "the density diffusion's limit at rest, time.diffusion_factor",
                    "--set time.dt_min=4e-4 --set time.dt_max=4e-4");
