@@ -2,19 +2,41 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <new>
+#include <string>
+
+#include <fmt/format.h>
 
 namespace bw::cli {
 
-const CLI::Validator kPositive(
-    [](std::string& input) -> std::string {
-      char* end = nullptr;
-      const double value = std::strtod(input.c_str(), &end);
-      if (end == input.c_str() || *end != '\0') return "'" + input + "' is not a number";
-      if (!std::isfinite(value) || value <= 0) return "'" + input + "' must be a positive number";
-      return {};
-    },
-    "POSITIVE", "positive");
+namespace {
+
+// The number `input` holds, or an error that names it; then `accept` decides.
+CLI::Validator number_check(std::function<bool(double)> accept, std::string expected, const std::string& name) {
+  return CLI::Validator(
+      [accept = std::move(accept), expected = std::move(expected)](std::string& input) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(input.c_str(), &end);
+        if (end == input.c_str() || *end != '\0') return "'" + input + "' is not a number";
+        if (!std::isfinite(value) || !accept(value)) return "'" + input + "' must be " + expected;
+        return {};
+      },
+      name, name);
+}
+
+std::string shortest(double v) { return fmt::format("{}", v); }
+
+}  // namespace
+
+const CLI::Validator kPositive = number_check([](double v) { return v > 0; }, "a positive number", "POSITIVE");
+const CLI::Validator kNonNegative =
+    number_check([](double v) { return v >= 0; }, "a number >= 0", "NONNEGATIVE");
+
+CLI::Validator in_range(double lo, double hi) {
+  return number_check([lo, hi](double v) { return v >= lo && v <= hi; },
+                      "a number from " + shortest(lo) + " to " + shortest(hi), "[" + shortest(lo) + " - " + shortest(hi) + "]");
+}
 
 void setup(CLI::App& app, const std::string& examples) {
   app.set_version_flag("--version", std::string(app.get_name()) + " " BW_VERSION);

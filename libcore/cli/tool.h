@@ -28,7 +28,10 @@ int run(CLI::App& app, int argc, char** argv, const std::function<int()>& body);
 // Prints "tool: message" on stderr (for warnings and notes from tools).
 void note(const CLI::App& app, const std::string& message);
 
-// CLI11 validator: a strictly positive finite number.
-extern const CLI::Validator kPositive;
+// CLI11 validators whose errors name the value and what was expected in a few words
+// (CLI11's own print their bounds to six decimals, the largest double in full).
+extern const CLI::Validator kPositive;     // a finite number > 0
+extern const CLI::Validator kNonNegative;  // a finite number >= 0
+CLI::Validator in_range(double lo, double hi);  // a finite number from lo to hi
 
 }  // namespace bw::cli

@@ -97,6 +97,10 @@ std::vector<CheckItem> check_fragments(const Solid& solid, std::span<const Vec3d
                                        std::span<const CellFailure> failures, int threads,
                                        FragmentFigures* figures = nullptr);
 
+// The most seeds a check cuts: as many bodies as a scene lets its breakable solids
+// become (fluid.max_chunks' limit). Each cell takes milliseconds.
+constexpr std::size_t kMaxSeeds = 1'000'000;
+
 struct SeedChoice {
   std::vector<Vec3d> points;         // given seeds; used when random == 0
   std::size_t random = 0;            // > 0: draw this many inside the solid

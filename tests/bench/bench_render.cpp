@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
   app.add_option("counts", counts, "Particle counts to render (default 30000 120000 500000)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
   app.add_option("--device", device, "EGL device index (default: the first that offers OpenGL 4.5, as bw-render)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(bw::cli::kNonNegative);
   app.add_option("--csv", csv, "Also write one CSV row per count to this file");
   return bw::cli::run(app, argc, argv, [&]() -> int {
     // Frames rendered per count after one warm-up frame; the fastest is reported (the

@@ -233,7 +233,7 @@ int main(int argc, char** argv) {
   auto* quick_flag = app.add_flag("--quick", quick, "The 30 k case only");
   app.add_option("--sizes", counts, "Fluid particle counts to run, about (default 30000,120000,500000)")
       ->delimiter(',')
-      ->check(CLI::Range(1000.0, 1e9))
+      ->check(bw::cli::in_range(1000, 1e9))
       ->excludes(quick_flag);
   app.add_option("--device", device_choice, "OpenCL device: auto, cpu, gpu or a number (bw-sim --device list)")
       ->capture_default_str();
@@ -241,11 +241,11 @@ int main(int argc, char** argv) {
   app.add_option("--profile", profile_near,
                  "Time each kernel in the case nearest this many fluid particles (0: none)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(bw::cli::kNonNegative);
   app.add_option("--simulate", simulate,
                  "Simulated seconds of the smallest case, for wall time per simulated second (0: none)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(bw::cli::kNonNegative);
   app.add_option("--density", density,
                  "fluid.density of the runs: continuity (with its density diffusion and hydrostatic wall; the profile's "
                  "fluid_density row is what the continuity equation and the diffusion cost), or summation")
@@ -254,7 +254,7 @@ int main(int argc, char** argv) {
   app.add_option("--diffusion", diffusion,
                  "fluid.diffusion (delta) with --density continuity (default: the scene's default; with a delta "
                  "above 0 the profiled case also prints the diffusion's own cost)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(bw::cli::in_range(0, 1));
   app.add_option("--wall-pressure", wall,
                  "fluid.wall_pressure of the runs (default: the scene's default): hydrostatic, mirrored or images (the "
                  "tank's flat faces as mirror images of the fluid); named, the tank's walls are two spacings thick")

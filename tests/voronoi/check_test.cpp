@@ -86,6 +86,28 @@ TEST(PrefractureCheck, SeedsOutsideTheMeshAreIgnoredWithAWarning) {
   EXPECT_EQ(r.fragment_set().seeds.size(), seeds.size());
 }
 
+// More seeds than a scene lets a solid become bodies are refused before any work,
+// given or drawn, in one line naming the input.
+TEST(PrefractureCheck, MoreSeedsThanTheLimitAreBadInput) {
+  const std::string expected = "test.obj: 1000001 seeds; a check cuts at most 1000000";
+  try {
+    check(bw::mesh::box({0, 0, 0}, {1, 1, 1}), std::vector<Vec3d>(bv::kMaxSeeds + 1, Vec3d(0.5, 0.5, 0.5)));
+    FAIL();
+  } catch (const bw::InputError& e) {
+    EXPECT_EQ(std::string(e.what()), expected);
+  }
+  bv::SeedChoice drawn;
+  drawn.random = bv::kMaxSeeds + 1;
+  bv::CheckOptions options;
+  options.source = "test.obj";
+  try {
+    bv::prefracture_check(bw::mesh::box({0, 0, 0}, {1, 1, 1}), drawn, options);
+    FAIL();
+  } catch (const bw::InputError& e) {
+    EXPECT_EQ(std::string(e.what()), expected);
+  }
+}
+
 TEST(PrefractureCheck, NoSeedInsideIsBadInput) {
   EXPECT_THROW(check(bw::mesh::box({0, 0, 0}, {1, 1, 1}), {{2, 2, 2}, {-1, 0, 0}}), bw::InputError);
   EXPECT_THROW(check(bw::mesh::box({0, 0, 0}, {1, 1, 1}), {}), bw::InputError);

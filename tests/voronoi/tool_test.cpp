@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <fstream>
 
+#include <fmt/format.h>
+
 #include "io/fragments_file.h"
 #include "mesh/import.h"
 #include "mesh/properties.h"
@@ -129,7 +131,12 @@ TEST(BwVoronoi, BadUsageAndBadSeedsAreExitTwo) {
   write_text(dir.file("s.txt"), "0.5 0.5 0.5\n");
   EXPECT_EQ(run(kVoronoi + " check " + cube + " --seeds " + dir.file("s.txt") + " --random 3").exit_code, 2);
   EXPECT_EQ(run(kVoronoi + " check " + cube + " --seed 3").exit_code, 2);
-  EXPECT_EQ(run(kVoronoi + " check " + cube + " --random 0").exit_code, 2);
+  for (const char* count : {"0", "1000001", "1e9"}) {
+    const auto r = run(kVoronoi + " check " + cube + " --random " + count);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, fmt::format("bw-voronoi: --random: '{}' must be a number from 1 to 1000000 (see bw-voronoi --help)\n",
+                                 count));
+  }
   EXPECT_EQ(run(kVoronoi).exit_code, 2);
   write_text(dir.file("bad.txt"), "0.5 0.5 0.5\n0.1 0.2\n");
   const auto bad = run(kVoronoi + " check " + cube + " --seeds " + dir.file("bad.txt"));

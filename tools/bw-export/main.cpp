@@ -96,7 +96,7 @@ int main(int argc, char** argv) {
   app.add_option("--mesh", o.mesh, "Also write the water's surface as a mesh per frame")
       ->check(CLI::IsMember({"obj", "ply"}));
   app.add_option("--adaptivity", o.adaptivity, "Mesh simplification in [0, 1] (default 0: none)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(bw::cli::in_range(0, 1));
   app.add_flag("--density", o.density, "Also write a fog volume grid \"density\" (for volume shaders)");
   app.add_option("--spacing", o.spacing, "Particle spacing in m (default: the run's /parameters/spacing)")
       ->check(bw::cli::kPositive);
@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
   app.add_option("--erode", o.erode,
                  "Move the surface inwards by this many m after smoothing (default 0; 0.4 x the spacing gives\n"
                  "the particles' volume back with the default radius, at about twice the time)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(bw::cli::kNonNegative);
   app.add_option("--up", o.up, "Up axis of the water files: z as breakwater and Blender, y for Houdini")
       ->check(CLI::IsMember({"z", "y"}));
   app.add_flag("--no-water", o.no_water, "Leave out the water (only solids.glb)");

@@ -316,10 +316,10 @@ int main(int argc, char** argv) {
   sensor->add_option("--normal", o.normal, "nx,ny,nz: the face's normal, into the fluid")
       ->delimiter(',')
       ->expected(3);
-  sensor->add_option("--radius", o.radius, "Radius of the sensor's disc (m); 0: a point")->check(CLI::NonNegativeNumber);
+  sensor->add_option("--radius", o.radius, "Radius of the sensor's disc (m); 0: a point")->check(bw::cli::kNonNegative);
   sensor->add_option("--h", o.h, "Kernel support (m): the run's smoothing length")->required()->check(bw::cli::kPositive);
   sensor->add_option("--offset", o.offset, "Distance into the fluid the pressure is read at (m); default h/2")
-      ->check(CLI::NonNegativeNumber);
+      ->check(bw::cli::kNonNegative);
   sensor->add_option("--rho0", o.rho0, "Density for the hydrostatic correction over the offset (kg/m^3)")
       ->check(bw::cli::kPositive);
   sensor->add_option("--gravity", o.gravity, "gx,gy,gz (m/s^2)")->delimiter(',')->expected(3);

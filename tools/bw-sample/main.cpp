@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
   app.add_flag("--volume", o.volume, "Also sample the interior cells (needs a closed, consistently oriented mesh)");
   app.add_option("--scale", o.scale, "Multiply every coordinate by this factor")->check(bw::cli::kPositive);
   app.add_option("--weld", o.weld, "Merge vertices closer than this distance (default: only identical ones)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(bw::cli::kNonNegative);
   app.add_flag("-v,--verbose", o.verbose, "Print counts, bounds, volumes and the options used");
 
   return bw::cli::run(app, argc, argv, [&] {

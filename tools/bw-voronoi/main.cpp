@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
   CLI::Option* seeds = check->add_option(
       "--seeds", c.seeds, "Seeds file: text with 'x y z' per line, or a breakwater HDF5 file with /seeds");
   CLI::Option* random =
-      check->add_option("--random", c.random, "Draw N seeds uniformly inside the mesh")->check(CLI::PositiveNumber);
+      check->add_option("--random", c.random, "Draw N seeds uniformly inside the mesh")->check(bw::cli::in_range(1, static_cast<double>(bw::voronoi::kMaxSeeds)));
   check->add_option("--seed", c.random_seed, "Random seed for --random (the same seed gives the same seeds)")
       ->needs(random);
   seeds->excludes(random);
@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"obj", "ply"}));
   check->add_flag("--json", c.json, "Print the report as JSON");
   check->add_option("--threads", c.threads, "Worker threads (default: one per hardware thread)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(bw::cli::kNonNegative);
   check->add_flag("-v,--verbose", c.verbose, "Print the options used");
 
   ReplayArgs p;
@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
                    "Then place every body's mesh in every frame (OUTDIR/meshes.h5) and add them to the run's "
                    "ParaView index OUTDIR/run.xdmf2 (as bw-voronoi index does)");
   replay->add_option("--threads", p.threads, "Worker threads (default: one per hardware thread)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(bw::cli::kNonNegative);
 
   IndexArgs x;
   CLI::App* index = app.add_subcommand(
