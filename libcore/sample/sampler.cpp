@@ -110,6 +110,10 @@ SampledSolid sample_mesh(TriMesh mesh, const SampleOptions& options, SampleRepor
     solid.mesh_volume = std::fabs(volume);
   }
   solid.surface = surface_cells(mesh, grid);
+  // No particle is no solid: a spacing beyond the mesh's size, most likely in other units.
+  if (solid.surface.empty())
+    fail_input("{}: spacing {} gives no surface particle; the mesh spans {:.4g} m at most", name, options.spacing,
+               extent.maxCoeff());
   if (options.volume) {
     solid.voxels = interior_cells(mesh, grid);
     solid.has_voxels = true;

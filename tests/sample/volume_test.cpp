@@ -235,6 +235,12 @@ TEST(VolumeSampling, RefusesOpenMeshesAndHugeOutputs) {
 
   const std::string bad_spacing = input_error([&] { sample_volume(cube, -1); });
   EXPECT_NE(bad_spacing.find("spacing"), std::string::npos) << bad_spacing;
+
+  // A spacing far beyond the mesh's size can leave no cell on its surface: refused,
+  // not written as a solid without particles.
+  EXPECT_EQ(input_error([&] { sample_volume(cube, 1e9); }),
+            "test mesh: spacing 1000000000 gives no surface particle; the mesh spans 1 m at most");
+  EXPECT_FALSE(sample_volume(cube, 0.5).surface.empty());
 }
 
 }  // namespace
