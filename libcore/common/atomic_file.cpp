@@ -37,9 +37,22 @@ void check_writable_folder_of(const std::string& path) {
   if (::access(folder.c_str(), W_OK) != 0) fail_input("{}: folder '{}' is not writable", path, folder);
 }
 
+namespace {
+
+void check_file_path(const std::string& path) {
+  check_writable_folder_of(path);
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) fail_input("{}: is a folder, expected a file name", path);
+}
+
+}  // namespace
+
+void check_output_file(const std::string& path) {
+  if (path != "-") check_file_path(path);
+}
+
 AtomicFile::AtomicFile(std::string path) : final_path_(std::move(path)) {
-  check_writable_folder_of(final_path_);
-  if (fs::is_directory(final_path_)) fail_input("{}: is a folder, expected a file name", final_path_);
+  check_file_path(final_path_);
   temp_path_ = temp_name_for(final_path_);
 }
 

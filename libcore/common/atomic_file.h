@@ -40,4 +40,9 @@ void write_file_atomically(const std::string& path, const void* bytes, std::size
 // Throws InputError naming `path` unless its folder exists and is writable.
 void check_writable_folder_of(const std::string& path);
 
+// What AtomicFile(path) checks, for a tool to call before its work so that a bad -o
+// is refused at once: the folder of `path` exists and is writable, and `path` is no
+// folder. "-" (standard output) passes.
+void check_output_file(const std::string& path);
+
 }  // namespace bw

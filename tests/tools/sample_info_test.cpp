@@ -138,6 +138,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"flipped_volume", "{dir}/flipped.obj -o {dir}/out.h5 --spacing 0.1 --volume",
                  "3 inconsistently oriented edges"},
         BadInput{"missing_output_folder", "{dir}/cube.obj -o {dir}/no/such/out.h5 --spacing 0.1", "does not exist"},
+        // The output is checked before the mesh is read, not after the sampling.
+        BadInput{"missing_output_folder_first", "{dir}/missing.obj -o {dir}/no/such/out.h5 --spacing 0.1",
+                 "/no/such/out.h5: folder '"},
+        BadInput{"output_is_a_folder", "{dir}/missing.obj -o {dir} --spacing 0.1", "is a folder, expected a file name"},
         BadInput{"unknown_option", "{dir}/cube.obj -o {dir}/out.h5 --spacing 0.1 --bogus", "--bogus"},
         BadInput{"no_spacing", "{dir}/cube.obj -o {dir}/out.h5", "--spacing"}),
     [](const auto& test) { return test.param.name; });

@@ -147,6 +147,13 @@ TEST(BwVoronoi, BadUsageAndBadSeedsAreExitTwo) {
   EXPECT_EQ(outside.exit_code, 2);
   EXPECT_NE(outside.err.find("none of the 1 seeds lies inside the mesh"), std::string::npos) << outside.err;
   EXPECT_EQ(run(kVoronoi + " check " + dir.file("missing.obj") + " --random 3").exit_code, 2);
+  // The fragments file's folder is checked before the mesh is read and cut.
+  const auto nowhere = run(kVoronoi + " check " + dir.file("missing.obj") + " --random 3 -o " + dir.file("no/f.h5"));
+  EXPECT_EQ(nowhere.exit_code, 2);
+  EXPECT_EQ(nowhere.err, "bw-voronoi: " + dir.file("no/f.h5") + ": folder '" + dir.file("no") + "' does not exist\n");
+  const auto folder = run(kVoronoi + " replay " + dir.file("missing.h5") + " -o " + dir.path());
+  EXPECT_EQ(folder.exit_code, 2);
+  EXPECT_EQ(folder.err, "bw-voronoi: " + dir.path() + ": is a folder, expected a file name\n");
 }
 
 TEST(BwVoronoi, RandomSeedsAreReproducibleAndTheFileIsTheSame) {
