@@ -114,12 +114,13 @@ SequencePlan plan_sequence(const SequenceJob& job) {
   }
 
   if (job.output_dir.empty()) fail_input("no output folder given (-o)");
+  // Every check before the output folder is made: bad input leaves nothing behind.
+  if (!job.video_path.empty()) VideoWriter::check_available(job.video_path);
   if (!fs::is_directory(job.output_dir, ec)) {
     fs::create_directories(job.output_dir, ec);
     if (ec) fail_input("{}: cannot create the output folder: {}", job.output_dir, ec.message());
   }
   if (::access(job.output_dir.c_str(), W_OK) != 0) fail_input("{}: the output folder is not writable", job.output_dir);
-  if (!job.video_path.empty()) VideoWriter::check_available(job.video_path);
   return plan;
 }
 

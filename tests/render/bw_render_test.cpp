@@ -247,7 +247,12 @@ TEST(BwRender, VideoWithoutFfmpegFails) {
   const auto r = run("PATH=/nonexistent " + kTool + " " + dir.file("frames") + " -o " + dir.file("i") +
                      " --video " + dir.file("v.mp4") + kSmall);
   expect_one_line_error(r, 1, "ffmpeg, which is not installed");
-  EXPECT_FALSE(bw::test::exists(dir.file("i/000000.png")));
+  EXPECT_FALSE(bw::test::exists(dir.file("i")));
+  // A video in a folder that does not exist: refused before anything is made.
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --video " +
+                            dir.file("no/v.mp4") + kSmall),
+                        2, dir.file("no/v.mp4") + ": folder '" + dir.file("no") + "' does not exist");
+  EXPECT_FALSE(bw::test::exists(dir.file("i")));
 }
 
 TEST(BwRender, MissingFrame) {
