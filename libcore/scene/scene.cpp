@@ -533,7 +533,15 @@ void read_solid(Reader& r, Scene& s) {
   if (fs::is_directory(p, ec)) r.fail("particles", fmt::format("{}: is a folder, not a particle file", given));
   solid.particles = p.string();
   solid.particles_given = given;
+  const bool named = r.has("name");
   solid.name = r.string("name", fs::path(given).stem().string());
+  // Loads, sensors and bw-measure find a solid by its name.
+  for (std::size_t k = 0; k < s.solids.size(); ++k) {
+    if (s.solids[k].name != solid.name) continue;
+    r.fail("name", named ? fmt::format("'{}' names solid[{}] too", solid.name, k)
+                         : fmt::format("missing, and the file's stem '{}' names solid[{}] too: give each its own name",
+                                       solid.name, k));
+  }
   solid.translation = r.vec3("translation", solid.translation);
   solid.rotation_degrees = r.vec3("rotation", solid.rotation_degrees);
   solid.scale = r.number("scale", solid.scale);
