@@ -133,6 +133,10 @@ TEST(Sensors, AFloorAndTwoWallsReadTheWaterAtRest) {
   const auto odd = test::run(measure + " --window 0.015");
   EXPECT_EQ(odd.exit_code, 2);
   EXPECT_NE(odd.err.find("--window 0.015"), std::string::npos) << odd.err;
+  const auto longer = test::run(measure + " --window 2");  // the run recorded 1.5 s
+  EXPECT_EQ(longer.exit_code, 2);
+  EXPECT_NE(longer.err.find("--window 2: longer than the 1.5 s that"), std::string::npos) << longer.err;
+  EXPECT_TRUE(longer.out.empty()) << longer.out;
   const auto unknown = test::run(measure + " --sensor P9");
   EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_NE(unknown.err.find("'P9'"), std::string::npos) << unknown.err;

@@ -220,6 +220,9 @@ int run_sensors(const Options& o) {
     per = static_cast<std::size_t>(std::llround(ratio));
     if (per < 1 || std::abs(ratio - static_cast<double>(per)) > 1e-6 * ratio)
       bw::fail_input("--window {}: not a whole number of the run's samples of {} s", o.window, r.interval);
+    if (per > r.samples())
+      bw::fail_input("--window {}: longer than the {} s that {} recorded", o.window,
+                     static_cast<double>(r.samples()) * r.interval, o.frames);
   }
   const std::size_t ns = r.names.size();
   std::vector<std::vector<double>> rows;
