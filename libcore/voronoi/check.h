@@ -98,7 +98,7 @@ std::vector<CheckItem> check_fragments(const Solid& solid, std::span<const Vec3d
                                        FragmentFigures* figures = nullptr);
 
 // The most seeds a check cuts: as many bodies as a scene lets its breakable solids
-// become (fluid.max_chunks' limit). Each cell takes milliseconds.
+// become (fracture.max_chunks' limit). Each cell takes milliseconds.
 constexpr std::size_t kMaxSeeds = 1'000'000;
 
 struct SeedChoice {
