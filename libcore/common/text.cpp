@@ -1,8 +1,13 @@
 #include "common/text.h"
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include <fmt/format.h>
+
+#include "common/error.h"
 
 namespace bw {
 
@@ -63,6 +68,18 @@ std::vector<std::string> split(const std::string& text, char separator) {
     start = at + 1;
   }
   return parts;
+}
+
+std::string read_text_file(const std::string& path, const std::string& kind) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) fail_input("{}: no such file", path);
+  if (fs::is_directory(path, ec)) fail_input("{}: is a folder, not {}", path, kind);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail_input("{}: cannot be read", path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 }  // namespace bw

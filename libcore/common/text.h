@@ -17,6 +17,11 @@ std::string human_count(double count);
 // JSON string literal with quotes and escapes.
 std::string json_quote(std::string_view text);
 
+// The whole of a text file given by a user, such as a scene. Throws InputError naming
+// `path` when it does not exist, is a folder (`kind` says what was expected: "a scene
+// file") or cannot be read.
+std::string read_text_file(const std::string& path, const std::string& kind);
+
 // The pieces of `text` between the separators, empty ones included ("a::b" gives
 // "a", "", "b"; "" gives one empty piece).
 std::vector<std::string> split(const std::string& text, char separator);

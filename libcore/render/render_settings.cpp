@@ -1,14 +1,13 @@
 #include "render/render_settings.h"
 
 #include <cmath>
-#include <fstream>
 #include <functional>
 #include <map>
-#include <sstream>
 
 #include <toml++/toml.h>
 
 #include "common/error.h"
+#include "common/text.h"
 
 namespace bw::render {
 namespace {
@@ -241,11 +240,7 @@ RenderSettings parse_render_settings(const std::string& toml_text, const std::st
 }
 
 RenderSettings load_render_settings(const std::string& scene_path) {
-  std::ifstream in(scene_path, std::ios::binary);
-  if (!in) fail_input("{}: cannot open the scene file", scene_path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_render_settings(text.str(), scene_path);
+  return parse_render_settings(read_text_file(scene_path, "a scene file"), scene_path);
 }
 
 }  // namespace bw::render

@@ -14,6 +14,7 @@
 #include <toml++/toml.h>
 
 #include "common/error.h"
+#include "common/text.h"
 #include "scene/overrides.h"
 
 namespace bw::scene {
@@ -753,14 +754,7 @@ void check_end_time(const Scene& s, double end, const std::string& what) {
 }
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) fail_input("{}: no such file", path);
-  if (fs::is_directory(path, ec)) fail_input("{}: is a folder, not a scene file", path);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail_input("{}: cannot be read", path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_scene(ss.str(), path, overrides);
+  return parse_scene(read_text_file(path, "a scene file"), path, overrides);
 }
 
 }  // namespace bw::scene

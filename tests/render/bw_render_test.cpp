@@ -304,6 +304,12 @@ TEST(BwRender, BadSceneAndOptions) {
   expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --scene " +
                             dir.file("scene.toml")),
                         2, "render.widht: unknown key");
+  // The scene file is read as bw-sim reads it: the same errors.
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --scene " +
+                            dir.file("none.toml")),
+                        2, dir.file("none.toml") + ": no such file");
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --scene " + dir.path()), 2,
+                        dir.path() + ": is a folder, not a scene file");
   expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --filter gauss"), 2,
                         "--filter");
   expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " --camera 1,2"), 2,
