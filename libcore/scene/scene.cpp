@@ -534,14 +534,19 @@ void read_solid(Reader& r, Scene& s) {
   if (fs::is_directory(p, ec)) r.fail("particles", fmt::format("{}: is a folder, not a particle file", given));
   solid.particles = p.string();
   solid.particles_given = given;
-  const bool named = r.has("name");
-  solid.name = r.string("name", fs::path(given).stem().string());
-  // Loads, sensors and bw-measure find a solid by its name.
-  for (std::size_t k = 0; k < s.solids.size(); ++k) {
-    if (s.solids[k].name != solid.name) continue;
-    r.fail("name", named ? fmt::format("'{}' names solid[{}] too", solid.name, k)
-                         : fmt::format("missing, and the file's stem '{}' names solid[{}] too: give each its own name",
-                                       solid.name, k));
+  // Loads, sensors and bw-measure find a solid by its name: names are unique. Solids
+  // from one file without a name take its stem, then stem-2, stem-3, ...
+  const auto owner = [&](const std::string& name) {
+    return std::find_if(s.solids.begin(), s.solids.end(), [&](const Solid& o) { return o.name == name; });
+  };
+  if (r.has("name")) {
+    solid.name = r.string("name", "");
+    if (const auto it = owner(solid.name); it != s.solids.end())
+      r.fail("name", fmt::format("'{}' names solid[{}] too", solid.name, it - s.solids.begin()));
+  } else {
+    const std::string stem = fs::path(given).stem().string();
+    solid.name = stem;
+    for (int n = 2; owner(solid.name) != s.solids.end(); ++n) solid.name = fmt::format("{}-{}", stem, n);
   }
   solid.translation = r.vec3("translation", solid.translation);
   solid.rotation_degrees = r.vec3("rotation", solid.rotation_degrees);

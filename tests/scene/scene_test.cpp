@@ -192,18 +192,24 @@ TEST(Scene, NameDefaultsToTheFileStem) {
   EXPECT_EQ(s.solids.at(0).name, "wall");
 }
 
-// Loads, sensors and bw-measure find solids by name: two of one name are refused,
-// also when both take the file's stem, and names tell two solids of one file apart.
+// Loads, sensors and bw-measure find solids by name: a name given twice is refused,
+// and solids of one file without names are told apart by a number.
 TEST(SceneErrors, SolidNamesAreUnique) {
   SceneFolder f;
   const std::string wall = "[[solid]]\nparticles = \"wall.h5\"\n";
-  expect_error(f, kMinimal + wall + wall,
-               "scene.toml: solid[1].name: missing, and the file's stem 'wall' names solid[0] too: give each its own "
-               "name");
+  const Scene s = load_scene(f.write(kMinimal + wall + wall + wall));
+  ASSERT_EQ(s.solids.size(), 3u);
+  EXPECT_EQ(s.solids[0].name, "wall");
+  EXPECT_EQ(s.solids[1].name, "wall-2");
+  EXPECT_EQ(s.solids[2].name, "wall-3");
   expect_error(f, kMinimal + wall + "[[solid]]\nparticles = \"wall.h5\"\nname = \"wall\"\n",
                "scene.toml: solid[1].name: 'wall' names solid[0] too");
-  const Scene s = load_scene(f.write(kMinimal + wall + "[[solid]]\nparticles = \"wall.h5\"\nname = \"east\"\n"));
-  EXPECT_EQ(s.solids.at(1).name, "east");
+  expect_error(f, kMinimal + wall + wall + "[[solid]]\nparticles = \"wall.h5\"\nname = \"wall-2\"\n",
+               "scene.toml: solid[2].name: 'wall-2' names solid[1] too");
+  const Scene named = load_scene(f.write(kMinimal + "[[solid]]\nparticles = \"wall.h5\"\nname = \"wall-2\"\n" + wall +
+                                         wall));
+  EXPECT_EQ(named.solids[1].name, "wall");
+  EXPECT_EQ(named.solids[2].name, "wall-3");
 }
 
 TEST(SceneErrors, UnknownKeysNameTheirPath) {
@@ -248,7 +254,7 @@ TEST(Scene, DensitySchemeAndLoads) {
 TEST(SceneErrors, OutOfRangeValues) {
   SceneFolder f;
   expect_error(f, "spacing = -0.01\n[time]\nend = 1\n", "spacing: -0.01 must be positive");
-  expect_error(f, kMinimal + "[[solid]]\nparticles = \"wall.h5\"\n[[solid]]\nparticles = \"wall.h5\"\nname = \"b\"\n[[solid]]\nparticles = \"wall.h5\"\nname = \"c\"\nscale = -1\n",
+  expect_error(f, kMinimal + "[[solid]]\nparticles = \"wall.h5\"\n[[solid]]\nparticles = \"wall.h5\"\n[[solid]]\nparticles = \"wall.h5\"\nscale = -1\n",
                "solid[2].scale: -1 must be positive");
   expect_error(f, kMinimal + "[fluid]\nmax_particles = 0\n", "fluid.max_particles: 0 must be at least 1");
   expect_error(f, kMinimal + "[fluid]\nk = 1000\nc0 = 30\n", "fluid.c0: give either k or c0, not both");
