@@ -34,8 +34,9 @@ const CLI::Validator kNonNegative =
     number_check([](double v) { return v >= 0; }, "a number >= 0", "NONNEGATIVE");
 
 CLI::Validator in_range(double lo, double hi) {
-  return number_check([lo, hi](double v) { return v >= lo && v <= hi; },
-                      "a number from " + shortest(lo) + " to " + shortest(hi), "[" + shortest(lo) + " - " + shortest(hi) + "]");
+  const std::string from = shortest(lo), to = shortest(hi);
+  return number_check([lo, hi](double v) { return v >= lo && v <= hi; }, "a number from " + from + " to " + to,
+                      "[" + from + " - " + to + "]");
 }
 
 void setup(CLI::App& app, const std::string& examples) {

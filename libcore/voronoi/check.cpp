@@ -284,7 +284,8 @@ FragmentSet CheckResult::fragment_set() const {
 
 CheckResult prefracture_check(TriMesh mesh, const SeedChoice& choice, const CheckOptions& options) {
   const std::size_t seed_count = choice.random > 0 ? choice.random : choice.points.size();
-  if (seed_count > kMaxSeeds) fail_input("{}: {} seeds; a check cuts at most {}", options.source, seed_count, kMaxSeeds);
+  if (seed_count > kMaxSeeds)
+    fail_input("{}: {} seeds; a check cuts at most {}", options.source, seed_count, kMaxSeeds);
   CheckResult r;
   r.source = options.source;
   r.input_kind = options.input_kind;

@@ -134,7 +134,8 @@ TEST(BwVoronoi, BadUsageAndBadSeedsAreExitTwo) {
   for (const char* count : {"0", "1000001", "1e9"}) {
     const auto r = run(kVoronoi + " check " + cube + " --random " + count);
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(r.err, fmt::format("bw-voronoi: --random: '{}' must be a number from 1 to 1000000 (see bw-voronoi --help)\n",
+    EXPECT_EQ(r.err, fmt::format("bw-voronoi: --random: '{}' must be a number from 1 to 1000000 (see bw-voronoi "
+                                 "--help)\n",
                                  count));
   }
   EXPECT_EQ(run(kVoronoi).exit_code, 2);

@@ -76,7 +76,8 @@ int main(int argc, char** argv) {
   CLI::Option* seeds = check->add_option(
       "--seeds", c.seeds, "Seeds file: text with 'x y z' per line, or a breakwater HDF5 file with /seeds");
   CLI::Option* random =
-      check->add_option("--random", c.random, "Draw N seeds uniformly inside the mesh")->check(bw::cli::in_range(1, static_cast<double>(bw::voronoi::kMaxSeeds)));
+      check->add_option("--random", c.random, "Draw N seeds uniformly inside the mesh")
+          ->check(bw::cli::in_range(1, static_cast<double>(bw::voronoi::kMaxSeeds)));
   check->add_option("--seed", c.random_seed, "Random seed for --random (the same seed gives the same seeds)")
       ->needs(random);
   seeds->excludes(random);
