@@ -3,8 +3,10 @@
 #include <hdf5.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -497,8 +499,11 @@ File File::create(const std::string& path, std::string_view kind) {
     file.name_ = path;
     file.target_ = std::make_unique<AtomicFile>(path);
     Id fapl = file_access_plist();
-    file.file_ = check_id(H5Fcreate(file.target_->temp_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()),
-                          path + ": cannot create");
+    errno = 0;
+    const hid_t created = H5Fcreate(file.target_->temp_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+    // The system's reason, not HDF5's report, which names the temporary file and its flags.
+    if (created < 0) fail_run("{}: cannot create: {}", path, errno ? std::strerror(errno) : hdf5_reason());
+    file.file_ = Id(created);
   }
   Id root = check_id(H5Gopen2(file.file_.get(), "/", H5P_DEFAULT), file.name_);
   file.root_ = Group(std::move(root), file.name_, "/");
@@ -524,6 +529,8 @@ File File::open(const std::string& path, std::string_view expected_kind) {
     file.name_ = path;
     std::ifstream probe(path, std::ios::binary);
     if (!probe) fail_input("{}: cannot open: {}", path, std::strerror(errno));
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) fail_input("{}: is a folder, not an HDF5 file", path);
     if (!is_hdf5_file(path)) fail_input("{}: not an HDF5 file", path);
     Id fapl = file_access_plist();
     file.file_ = Id(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()));

@@ -139,6 +139,7 @@ TEST(H5, NewerVersionAndForeignFilesAreRefused) {
   std::ofstream(dir.file("text.h5")) << "just text\n";
   EXPECT_NE(input_error([&] { h5::File::open(dir.file("text.h5")); }).find("not an HDF5 file"), std::string::npos);
   EXPECT_NE(input_error([&] { h5::File::open(dir.file("missing.h5")); }).find("cannot open"), std::string::npos);
+  EXPECT_EQ(input_error([&] { h5::File::open(dir.path()); }), dir.path() + ": is a folder, not an HDF5 file");
 }
 
 TEST(H5, TruncatedFileIsRefused) {
