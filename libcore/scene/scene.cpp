@@ -747,11 +747,16 @@ Scene parse_scene(std::string_view text, const std::string& path, const std::vec
   return s;
 }
 
+int last_frame(double end, double frame_rate) {
+  constexpr double kSlack = 1e-9;  // 0.3 s at 10 frames a second ends at frame 3
+  return static_cast<int>(std::floor(end * frame_rate + kSlack));
+}
+
 void check_end_time(const Scene& s, double end, const std::string& what) {
   if (!std::isfinite(end) || end <= 0) fail_input("{}: {} is not a positive time (s)", what, end);
   if (end * s.time.frame_rate > kMaxFrames)
     fail_input("{}: {} s at {} frames per second is more than {} frames", what, end, s.time.frame_rate, kMaxFrames);
-  if (std::floor(end * s.time.frame_rate + 1e-9) < 1)  // the run's frame count, with bw-sim's slack
+  if (last_frame(end, s.time.frame_rate) < 1)
     fail_input("{}: {} s is shorter than one frame at {} frames per second", what, end, s.time.frame_rate);
   if (!s.sensors.empty() && end * s.sensor_rate > kMaxSensorSamples)
     fail_input("{}: {} s at {} sensor samples per second is more than {} samples", what, end, s.sensor_rate,

@@ -161,6 +161,10 @@ struct Scene {
   double sensor_rate = 1000;       // output.sensor_rate: samples per second of each sensor (Hz)
 };
 
+// The number of a run's last frame: frame f is written at f / frame_rate, the last
+// one at or before `end` (up to rounding). Only for end times check_end_time accepts.
+int last_frame(double end, double frame_rate);
+
 // Checks an end time given for a run of `s` in place of its time.end (bw-sim
 // --end-time) against the limits the scene's own is held to: at least one frame, at
 // most as many frames and sensor samples as a run file holds. Throws InputError

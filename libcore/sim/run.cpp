@@ -30,8 +30,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Frame f is at f / frame_rate; the last one at or before the end (up to rounding).
-constexpr double kFrameSlack = 1e-9;
 // Largest compression (rho / rho0 - 1) the fluid may start with: a block placed one
 // spacing from walls starts below 1e-5; overlapping a solid gives tens of percent.
 constexpr double kMaxInitialCompression = 0.05;
@@ -72,10 +70,6 @@ double nearest_pair(const FrameData& d, const ParticleArrays& boundary, double r
         }
   }
   return nearest;
-}
-
-int last_frame(double end_time, double frame_rate) {
-  return static_cast<int>(std::floor(end_time * frame_rate + kFrameSlack));
 }
 
 // Removes frame files of an earlier run in the same folder, so that the folder holds
@@ -167,7 +161,7 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
       fail_input("{}: made on {}, this run would be on {}: a run goes on bit-identically only on the device it "
                  "started on (--device)",
                  path, h.device, device_identity(device));
-    if (h.frame < 0 || h.frame >= last_frame(s.end_time, scene.time.frame_rate))
+    if (h.frame < 0 || h.frame >= scene::last_frame(s.end_time, scene.time.frame_rate))
       fail_input("{}: frame {} is not a frame of this run", path, h.frame);
     s.resuming = true;
   }
@@ -330,7 +324,7 @@ RunSummary Simulation::run() {
   Stopwatch clock;
   double wall_offset = 0;  // a resumed run's wall time goes on from its checkpoint's
   auto wall_now = [&] { return wall_offset + clock.seconds(); };
-  const int frames = last_frame(s.end_time, p.frame_rate);
+  const int frames = scene::last_frame(s.end_time, p.frame_rate);
   double previous_energy = 0;
   double mean_error_sum = 0;
   RunIndex index;  // the frames written so far, for OUTDIR/run.xdmf2
