@@ -76,6 +76,17 @@ Camera parse_camera(const std::string& text) {
   return c;
 }
 
+std::string default_run_path(const std::string& frames_dir) {
+  const fs::path guess = fs::path(frames_dir) / ".." / "run.h5";
+  std::error_code ec;
+  return fs::exists(guess, ec) ? guess.lexically_normal().string() : std::string();
+}
+
+RenderSettings run_render_settings(const std::string& run_path) {
+  const h5::File file = h5::File::open(run_path, "run");
+  return parse_render_settings(file.root().attr_string("scene"), run_path + ": scene");
+}
+
 SequencePlan plan_sequence(const SequenceJob& job) {
   SequencePlan plan;
   const std::map<int, std::string> frames = require_frame_files(job.frames_dir);
@@ -107,11 +118,7 @@ SequencePlan plan_sequence(const SequenceJob& job) {
   if (job.fps > 0) plan.fps = job.fps;
 
   std::error_code ec;
-  plan.run_path = job.run_path;
-  if (plan.run_path.empty()) {
-    const fs::path guess = fs::path(job.frames_dir) / ".." / "run.h5";
-    if (fs::exists(guess, ec)) plan.run_path = guess.lexically_normal().string();
-  }
+  plan.run_path = job.run_path.empty() ? default_run_path(job.frames_dir) : job.run_path;
 
   if (job.output_dir.empty()) fail_input("no output folder given (-o)");
   // Every check before the output folder is made: bad input leaves nothing behind.

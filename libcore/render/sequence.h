@@ -21,11 +21,19 @@ using bw::parse_frame_range;
 // degrees (45 when left out); up is +z. Throws InputError.
 Camera parse_camera(const std::string& text);
 
+// The run file beside a frames folder, FRAMES_DIR/../run.h5, when it exists; else empty.
+std::string default_run_path(const std::string& frames_dir);
+
+// The look of the scene a run was made with: the [camera], [light] and [render]
+// tables of the scene text the run file keeps (docs/formats.md), over the defaults.
+// Throws InputError for a file that is not a run file or tables out of range.
+RenderSettings run_render_settings(const std::string& run_path);
+
 struct SequenceJob {
   std::string frames_dir;       // OUTDIR/frames of a simulation
   std::string output_dir;       // created when missing
   FrameRange range;
-  std::string run_path;         // empty: FRAMES_DIR/../run.h5 when it exists
+  std::string run_path;         // empty: default_run_path(frames_dir)
   std::string fragments_path;   // empty: no fragments
   std::string video_path;       // empty: no video
   double fps = 0;               // video frame rate; 0: from the frames' times

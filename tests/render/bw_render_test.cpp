@@ -161,6 +161,45 @@ TEST(BwRender, SceneTablesAndCommandLine) {
   EXPECT_NE(r.err.find("camera       1,-3,1:0,0,0.5:30\n"), std::string::npos) << r.err;
 }
 
+// Without --scene, the look is that of the scene the run was made with (the run file
+// keeps its text); --scene replaces it, --no-scene leaves the defaults and a fitted camera.
+TEST(BwRender, RunsSceneTablesUnlessTold) {
+  bw::test::TempDir dir;
+  write_run(dir, {0});
+  bw::RunRecord record = bw::read_run(dir.file("run.h5"));
+  record.scene_text = "spacing = 0.05\n[render]\nwidth = 72\nheight = 40\n"
+                      "[camera]\nposition = [0, -3, 1]\ntarget = [0, 0, 0.5]\n";
+  bw::write_run(record, dir.file("run.h5"));
+  auto r = run(kTool + " " + dir.file("frames") + " -o " + dir.file("i") + " -v");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(br::read_png(dir.file("i/000000.png")).width, 72);
+  EXPECT_NE(r.err.find("look         the scene of " + dir.file("run.h5")), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("camera       0,-3,1:0,0,0.5:45\n"), std::string::npos) << r.err;
+
+  r = run(kTool + " " + dir.file("frames") + " -o " + dir.file("j") + " --no-scene" + kSmall + " -v");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(br::read_png(dir.file("j/000000.png")).width, 160);
+  EXPECT_NE(r.err.find("look         defaults"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("(fitted)"), std::string::npos) << r.err;
+
+  std::ofstream(dir.file("scene.toml")) << "[render]\nwidth = 48\nheight = 32\n";
+  r = run(kTool + " " + dir.file("frames") + " -o " + dir.file("k") + " --scene " + dir.file("scene.toml") + " -v");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(br::read_png(dir.file("k/000000.png")).width, 48);
+  EXPECT_NE(r.err.find("(fitted)"), std::string::npos) << r.err;
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("k") + " --scene " +
+                            dir.file("scene.toml") + " --no-scene"),
+                        2, "--no-scene");
+
+  // A run whose scene bw-render cannot draw (bw-sim refuses such scenes; an older run)
+  // is named with the key, and nothing is drawn.
+  record.scene_text = "[render]\nwidth = 0\n";
+  bw::write_run(record, dir.file("run.h5"));
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("l")), 2,
+                        dir.file("run.h5") + ": scene: render.width: 0 is outside [1, 16384]");
+  EXPECT_TRUE(nothing_in(dir.file("l")));
+}
+
 // A breakable wall cut into fragments that the frame poses: drawn with the fragments
 // file, counted as bodies without a mesh without it.
 TEST(BwRender, FragmentsPlacedByTheirBodies) {

@@ -222,6 +222,10 @@ TEST(BwSim, BadInputsExitWithTwoAndWriteNothing) {
   expect_bad_input(kGood + "[fluid]\nmax_particles = 5\n", "fluid.max_particles: 5 is fewer than the 8 particles");
   expect_bad_input(kGood + "[output]\nfields = [\"temperature\"]\n", "output.fields: 'temperature' is not a field");
   expect_bad_input(kGood + "[time]\n", "scene.toml:");
+  // bw-render's tables are checked before the run, not after it.
+  expect_bad_input(kGood + "[render]\nwidth = 0\n", "scene.toml: render.width: 0 is outside [1, 16384]");
+  expect_bad_input(kGood + "[camera]\nzoom = 2\n", "scene.toml: camera.zoom: unknown key");
+  expect_bad_input(kGood, "scene.toml: light.intensity: must be >= 0", "--set light.intensity=-1");
   expect_bad_input(kGood, "--device: 'fastest'", "--device fastest");
   expect_bad_input(kGood, "--device 99", "--device 99");
   expect_bad_input(kGood, "--end-time", "--end-time -1");

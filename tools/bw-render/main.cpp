@@ -14,6 +14,7 @@ struct Options {
   std::string output_dir;
   std::string frames;          // A:B[:S]
   std::string scene;
+  bool no_scene = false;       // defaults, not the run's scene tables
   std::string fragments;
   std::string run;
   std::optional<int> width, height;
@@ -28,8 +29,9 @@ struct Options {
   bool quiet = false;
   bool verbose = false;
 
-  // Builds the job: the scene's tables, then the command line over them.
-  bw::render::SequenceJob job() const {
+  // Builds the job: the scene's tables (--scene, else the run's scene), then the
+  // command line over them. `look` gets where the tables came from.
+  bw::render::SequenceJob job(std::string* look) const {
     bw::render::SequenceJob j;
     j.frames_dir = frames_dir;
     j.output_dir = output_dir;
@@ -39,7 +41,17 @@ struct Options {
     j.video_path = video;
     j.fps = fps;
     j.device = device == "auto" ? -1 : std::stoi(device);
-    j.settings = scene.empty() ? bw::render::RenderSettings{} : bw::render::load_render_settings(scene);
+    *look = "defaults";
+    if (!scene.empty()) {
+      j.settings = bw::render::load_render_settings(scene);
+      *look = "scene " + scene;
+    } else if (!no_scene) {
+      const std::string run_path = run.empty() ? bw::render::default_run_path(frames_dir) : run;
+      if (!run_path.empty()) {
+        j.settings = bw::render::run_render_settings(run_path);
+        *look = "the scene of " + run_path;
+      }
+    }
     if (width) j.settings.width = *width;
     if (height) j.settings.height = *height;
     if (!camera.empty()) j.settings.camera = bw::render::parse_camera(camera);
@@ -52,7 +64,8 @@ struct Options {
   }
 };
 
-void print_summary(const Options& o, const bw::render::SequenceJob& job, const bw::render::SequenceReport& r) {
+void print_summary(const Options& o, const bw::render::SequenceJob& job, const std::string& look,
+                   const bw::render::SequenceReport& r) {
   std::fprintf(stderr, "bw-render: %zu frame%s (%06d..%06d) -> %s in %s, %.0f ms per frame\n", r.frames,
                r.frames == 1 ? "" : "s", r.first, r.last, o.output_dir.c_str(), bw::human_duration(r.seconds).c_str(),
                r.render_ms_per_frame);
@@ -68,6 +81,7 @@ void print_summary(const Options& o, const bw::render::SequenceJob& job, const b
   const auto& s = job.settings;
   const auto& c = r.camera;
   std::fprintf(stderr, "  renderer     %s (%s)\n", r.renderer.c_str(), r.display.c_str());
+  std::fprintf(stderr, "  look         %s\n", look.c_str());
   std::fprintf(stderr, "  image        %d x %d, filter %s\n", s.width, s.height, bw::render::filter_name(s.filter));
   std::fprintf(stderr, "  camera       %g,%g,%g:%g,%g,%g:%g%s\n", c.position.x(), c.position.y(), c.position.z(),
                c.target.x(), c.target.y(), c.target.z(), c.fov_degrees, r.camera_fitted ? " (fitted)" : "");
@@ -103,7 +117,10 @@ int main(int argc, char** argv) {
   app.add_option("frames_dir", o.frames_dir, "Folder of frame files (OUTDIR/frames of a simulation)")->required();
   app.add_option("-o,--output", o.output_dir, "Folder for the images (created when missing)")->required();
   app.add_option("--frames", o.frames, "Frames A:B[:S], both ends included (default: all)");
-  app.add_option("--scene", o.scene, "Scene file: its [camera], [light] and [render] tables");
+  auto* scene = app.add_option("--scene", o.scene,
+                                "Scene file: its [camera], [light] and [render] tables (default: the run's scene)");
+  app.add_flag("--no-scene", o.no_scene, "Default look and a fitted camera, not the run's scene tables")
+      ->excludes(scene);
   app.add_option("--fragments", o.fragments, "Fragment meshes of the run (bw-voronoi replay)");
   app.add_option("--run", o.run, "Run file (default: FRAMES_DIR/../run.h5 when present)");
   app.add_option("--width", o.width, "Image width in pixels (default 1280)")->check(CLI::Range(1, 16384));
@@ -129,13 +146,14 @@ int main(int argc, char** argv) {
   app.add_flag("-v,--verbose", o.verbose, "Print the renderer, camera, particle size and solids used");
 
   return bw::cli::run(app, argc, argv, [&] {
-    const bw::render::SequenceJob job = o.job();
+    std::string look;
+    const bw::render::SequenceJob job = o.job(&look);
     bw::ProgressLine progress(!o.quiet);
     const auto report = bw::render::render_sequence(job, [&](const bw::render::SequenceProgress& p) {
       progress.update(bw::frame_progress_text("bw-render", p.frame, p.done, p.total, p.render_seconds), p.done == p.total);
     });
     progress.clear();
-    if (!o.quiet) print_summary(o, job, report);
+    if (!o.quiet) print_summary(o, job, look, report);
     return bw::kExitOk;
   });
 }

@@ -8,6 +8,7 @@
 
 #include "cli/tool.h"
 #include "compute/device.h"
+#include "render/render_settings.h"
 #include "scene/scene.h"
 #include "sim/checkpoint.h"
 #include "sim/run.h"
@@ -123,6 +124,8 @@ int main(int argc, char** argv) {
       options.resume = true;
     } else {
       scene = bw::scene::load_scene(o.scene, o.overrides);
+      // bw-render's tables too, so that a long run does not end in a scene it cannot draw.
+      bw::render::parse_render_settings(scene.text, scene.path);
       device = bw::compute::choose_device(o.device.empty() ? "auto" : o.device);
     }
     bw::sim::Simulation simulation(scene, device, options);
