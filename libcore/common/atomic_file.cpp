@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <vector>
 
 #include "common/error.h"
 
@@ -21,11 +22,50 @@ std::string folder_of(const std::string& path) {
 }
 
 // Unique within the process and across processes sharing a folder (make -j).
-std::string temp_name_for(const std::string& path) {
+std::string temp_name_for(const std::string& path, const fs::path& folder) {
   static std::atomic<unsigned> counter{0};
-  fs::path p(path);
-  const std::string name = fmt::format(".{}.tmp-{}-{}", p.filename().string(), static_cast<long>(::getpid()), counter++);
-  return (p.parent_path() / name).string();
+  const std::string name =
+      fmt::format(".{}.tmp-{}-{}", fs::path(path).filename().string(), static_cast<long>(::getpid()), counter++);
+  return (folder / name).string();
+}
+
+// Where a write to `path` lands: a link's target (the link stays), and whether that
+// is a device or a pipe, which takes bytes but cannot be renamed over.
+struct Target {
+  std::string path;
+  bool stream = false;
+};
+
+Target target_of(const std::string& path) {
+  Target t{path, false};
+  std::error_code ec;
+  if (fs::is_symlink(fs::symlink_status(path, ec))) {
+    const fs::path resolved = fs::weakly_canonical(path, ec);
+    if (!ec) t.path = resolved.string();
+  }
+  const fs::file_status st = fs::status(t.path, ec);
+  t.stream = fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st);
+  return t;
+}
+
+// Copies the finished file into a device or a pipe, which a rename would replace.
+void copy_bytes(const std::string& from, const std::string& to, const std::string& name) {
+  std::FILE* in = std::fopen(from.c_str(), "rb");
+  if (!in) fail_run("{}: cannot read the finished file back: {}", name, std::strerror(errno));
+  std::FILE* out = std::fopen(to.c_str(), "wb");
+  if (!out) {
+    const int err = errno;
+    std::fclose(in);
+    fail_run("{}: cannot write: {}", name, std::strerror(err));
+  }
+  std::vector<char> buffer(1 << 20);
+  int err = 0;
+  for (std::size_t n; err == 0 && (n = std::fread(buffer.data(), 1, buffer.size(), in)) > 0;)
+    if (std::fwrite(buffer.data(), 1, n, out) != n) err = errno ? errno : EIO;
+  if (err == 0 && std::ferror(in)) err = errno ? errno : EIO;
+  std::fclose(in);
+  if (std::fclose(out) != 0 && err == 0) err = errno ? errno : EIO;
+  if (err) fail_run("{}: write failed: {}", name, std::strerror(err));
 }
 
 }  // namespace
@@ -39,28 +79,37 @@ void check_writable_folder_of(const std::string& path) {
 
 namespace {
 
-void check_file_path(const std::string& path) {
-  check_writable_folder_of(path);
+void check_file_path(const std::string& path, const Target& target) {
   std::error_code ec;
-  if (fs::is_directory(path, ec)) fail_input("{}: is a folder, expected a file name", path);
+  if (fs::is_directory(target.path, ec)) fail_input("{}: is a folder, expected a file name", path);
+  if (!target.stream) {
+    check_writable_folder_of(target.path);
+  } else if (::access(target.path.c_str(), W_OK) != 0) {
+    fail_input("{}: cannot write: {}", path, std::strerror(errno));
+  }
 }
 
 }  // namespace
 
 void check_output_file(const std::string& path) {
-  if (path != "-") check_file_path(path);
+  if (path != "-") check_file_path(path, target_of(path));
 }
 
 AtomicFile::AtomicFile(std::string path) : final_path_(std::move(path)) {
-  check_file_path(final_path_);
-  temp_path_ = temp_name_for(final_path_);
+  const Target target = target_of(final_path_);
+  check_file_path(final_path_, target);
+  target_path_ = target.path;
+  stream_ = target.stream;
+  temp_path_ = temp_name_for(target_path_, stream_ ? fs::temp_directory_path() : fs::path(target_path_).parent_path());
 }
 
 AtomicFile::~AtomicFile() { discard(); }
 
 AtomicFile::AtomicFile(AtomicFile&& other) noexcept
     : final_path_(std::move(other.final_path_)),
+      target_path_(std::move(other.target_path_)),
       temp_path_(std::move(other.temp_path_)),
+      stream_(other.stream_),
       committed_(other.committed_) {
   other.temp_path_.clear();
 }
@@ -69,7 +118,9 @@ AtomicFile& AtomicFile::operator=(AtomicFile&& other) noexcept {
   if (this != &other) {
     discard();
     final_path_ = std::move(other.final_path_);
+    target_path_ = std::move(other.target_path_);
     temp_path_ = std::move(other.temp_path_);
+    stream_ = other.stream_;
     committed_ = other.committed_;
     other.temp_path_.clear();
   }
@@ -78,7 +129,13 @@ AtomicFile& AtomicFile::operator=(AtomicFile&& other) noexcept {
 
 void AtomicFile::commit() {
   if (committed_) return;
-  if (std::rename(temp_path_.c_str(), final_path_.c_str()) != 0) {
+  if (stream_) {
+    copy_bytes(temp_path_, target_path_, final_path_);
+    discard();
+    committed_ = true;
+    return;
+  }
+  if (std::rename(temp_path_.c_str(), target_path_.c_str()) != 0) {
     const int err = errno;
     fail_run("{}: cannot rename the finished file into place: {}", final_path_, std::strerror(err));
   }

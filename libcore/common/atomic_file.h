@@ -4,6 +4,11 @@
 // POSIX file systems); commit() renames it over the final name. If the object is
 // destroyed without commit (an exception, a failed run), the temporary file is
 // removed and whatever stood under the final name before is untouched.
+//
+// A final name that is a symbolic link is written through: the file it points to is
+// replaced and the link stays. One that is a device or a pipe (/dev/null, a FIFO,
+// /dev/stdout) cannot be renamed over, and must not be: the temporary file goes to
+// the system's temporary folder and commit() copies it in.
 #pragma once
 
 #include <string>
@@ -23,14 +28,17 @@ class AtomicFile {
   const std::string& final_path() const { return final_path_; }
   const std::string& temp_path() const { return temp_path_; }
 
-  // Renames the temporary file to the final name. Throws RunError on failure.
+  // Renames the temporary file to the final name (or copies it into a device or a
+  // pipe). Throws RunError on failure.
   void commit();
   // Removes the temporary file now (also done by the destructor).
   void discard() noexcept;
 
  private:
-  std::string final_path_;
+  std::string final_path_;   // as given, for messages
+  std::string target_path_;  // where the bytes go: final_path_ with a link followed
   std::string temp_path_;
+  bool stream_ = false;      // the target is a device or a pipe: copied in, not renamed
   bool committed_ = false;
 };
 
@@ -42,7 +50,7 @@ void check_writable_folder_of(const std::string& path);
 
 // What AtomicFile(path) checks, for a tool to call before its work so that a bad -o
 // is refused at once: the folder of `path` exists and is writable, and `path` is no
-// folder. "-" (standard output) passes.
+// folder (or, for a device or a pipe, it is writable). "-" (standard output) passes.
 void check_output_file(const std::string& path);
 
 }  // namespace bw

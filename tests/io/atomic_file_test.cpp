@@ -1,0 +1,110 @@
+// Writing through a temporary file: links are written through, and devices and pipes
+// (/dev/null, a FIFO) get the bytes copied in, never a regular file in their place.
+#include <gtest/gtest.h>
+
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <sstream>
+#include <string>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "io/h5.h"
+#include "test_support.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using bw::test::TempDir;
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(AtomicFile, ReplacesAFileAndLeavesNoTemporary) {
+  TempDir dir;
+  std::ofstream(dir.file("a.txt")) << "old";
+  bw::write_file_atomically(dir.file("a.txt"), "new", 3);
+  EXPECT_EQ(slurp(dir.file("a.txt")), "new");
+  EXPECT_EQ(bw::test::list_folder(dir.path()), "a.txt");
+}
+
+// A link named as the output keeps pointing where it did, at the new bytes.
+TEST(AtomicFile, WritesThroughALink) {
+  TempDir dir;
+  fs::create_directories(dir.file("data"));
+  std::ofstream(dir.file("data/run.h5")) << "old";
+  fs::create_symlink("data/run.h5", dir.file("latest.h5"));
+  bw::write_file_atomically(dir.file("latest.h5"), "new", 3);
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir.file("latest.h5"))));
+  EXPECT_EQ(slurp(dir.file("data/run.h5")), "new");
+  EXPECT_EQ(bw::test::list_folder(dir.path()), "data latest.h5");
+  EXPECT_EQ(bw::test::list_folder(dir.file("data")), "run.h5");
+}
+
+// A pipe takes the finished bytes and stays a pipe (a rename over /dev/null as root
+// would have put a regular file in its place); its temporary file is gone.
+TEST(AtomicFile, CopiesIntoAPipe) {
+  TempDir dir;
+  const std::string fifo = dir.file("pipe");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  auto reader = std::async(std::launch::async, [&] { return slurp(fifo); });
+  std::string temp;
+  {
+    bw::AtomicFile file(fifo);
+    temp = file.temp_path();
+    EXPECT_NE(fs::path(temp).parent_path(), fs::path(dir.path()));
+    std::ofstream(temp, std::ios::binary) << "finished bytes";
+    file.commit();
+  }
+  EXPECT_EQ(reader.get(), "finished bytes");
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  EXPECT_FALSE(fs::exists(temp));
+  EXPECT_EQ(bw::test::list_folder(dir.path()), "pipe");
+}
+
+TEST(AtomicFile, AnHdf5FileIntoAPipeReadsBack) {
+  TempDir dir;
+  const std::string fifo = dir.file("pipe");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  auto reader = std::async(std::launch::async, [&] { return slurp(fifo); });
+  {
+    bw::h5::File file = bw::h5::File::create(fifo, "test");
+    file.root().set_attr("answer", 42.0);
+    file.commit();
+  }
+  std::ofstream(dir.file("copy.h5"), std::ios::binary) << reader.get();
+  const bw::h5::File copy = bw::h5::File::open(dir.file("copy.h5"), "test");
+  EXPECT_EQ(copy.root().attr<double>("answer"), 42.0);
+  EXPECT_TRUE(fs::is_fifo(fifo));
+}
+
+TEST(AtomicFile, UncommittedWriteToAPipeLeavesNothing) {
+  TempDir dir;
+  const std::string fifo = dir.file("pipe");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::string temp;
+  {
+    bw::AtomicFile file(fifo);
+    temp = file.temp_path();
+    std::ofstream(temp, std::ios::binary) << "half";
+  }
+  EXPECT_FALSE(fs::exists(temp));
+  EXPECT_TRUE(fs::is_fifo(fifo));
+}
+
+TEST(AtomicFile, ADeviceThatCannotBeWrittenIsBadInput) {
+  TempDir dir;
+  const std::string fifo = dir.file("pipe");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0400), 0);
+  if (::access(fifo.c_str(), W_OK) == 0) GTEST_SKIP() << "running as root: every file is writable";
+  EXPECT_THROW(bw::check_output_file(fifo), bw::InputError);
+}
+
+}  // namespace
