@@ -91,8 +91,14 @@ void check_file_path(const std::string& path, const Target& target) {
 
 }  // namespace
 
-void check_output_file(const std::string& path) {
-  if (path != "-") check_file_path(path, target_of(path));
+void check_output_file(const std::string& path, const std::vector<std::string>& inputs) {
+  if (path == "-") return;
+  check_file_path(path, target_of(path));
+  for (const std::string& input : inputs) {
+    std::error_code ec;
+    if (input != "-" && fs::equivalent(path, input, ec))
+      fail_input("{}: is the input file {} itself; write the output to another file", path, input);
+  }
 }
 
 AtomicFile::AtomicFile(std::string path) : final_path_(std::move(path)) {

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace bw {
 
@@ -51,6 +52,8 @@ void check_writable_folder_of(const std::string& path);
 // What AtomicFile(path) checks, for a tool to call before its work so that a bad -o
 // is refused at once: the folder of `path` exists and is writable, and `path` is no
 // folder (or, for a device or a pipe, it is writable). "-" (standard output) passes.
-void check_output_file(const std::string& path);
+// `inputs` are the files the tool reads: an output that is one of them (by another
+// name or through a link too) would replace what it was made from, and is refused.
+void check_output_file(const std::string& path, const std::vector<std::string>& inputs = {});
 
 }  // namespace bw

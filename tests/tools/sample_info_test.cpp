@@ -142,6 +142,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"missing_output_folder_first", "{dir}/missing.obj -o {dir}/no/such/out.h5 --spacing 0.1",
                  "/no/such/out.h5: folder '"},
         BadInput{"output_is_a_folder", "{dir}/missing.obj -o {dir} --spacing 0.1", "is a folder, expected a file name"},
+        // The mesh itself, under another name: refused before it is read, so it stays whole.
+        BadInput{"output_is_the_mesh", "{dir}/cube.obj -o {dir}/./cube.obj --spacing 0.1",
+                 "cube.obj itself; write the output to another file"},
         BadInput{"unknown_option", "{dir}/cube.obj -o {dir}/out.h5 --spacing 0.1 --bogus", "--bogus"},
         BadInput{"no_spacing", "{dir}/cube.obj -o {dir}/out.h5", "--spacing"}),
     [](const auto& test) { return test.param.name; });

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 
 #include <fmt/format.h>
@@ -23,6 +24,10 @@ const std::string kVoronoi = tool("bw-voronoi");
 const std::string kSample = tool("bw-sample");
 
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
 
 const char* kOctants =
     "0.25 0.25 0.25\n0.75 0.25 0.25\n0.25 0.75 0.25\n0.75 0.75 0.25\n"
@@ -155,6 +160,21 @@ TEST(BwVoronoi, BadUsageAndBadSeedsAreExitTwo) {
   const auto folder = run(kVoronoi + " replay " + dir.file("missing.h5") + " -o " + dir.path());
   EXPECT_EQ(folder.exit_code, 2);
   EXPECT_EQ(folder.err, "bw-voronoi: " + dir.path() + ": is a folder, expected a file name\n");
+  // An output that is an input, by its name or another, would replace it: refused, the input left whole.
+  const std::string mesh = read_text(cube);
+  const auto same = run(kVoronoi + " check " + cube + " --random 3 -o " + dir.path() + "/./cube.obj");
+  EXPECT_EQ(same.exit_code, 2);
+  EXPECT_EQ(same.err, "bw-voronoi: " + dir.path() + "/./cube.obj: is the input file " + cube +
+                          " itself; write the output to another file\n");
+  EXPECT_EQ(read_text(cube), mesh);
+  const auto seeds_file = run(kVoronoi + " check " + cube + " --seeds " + dir.file("s.txt") + " -o " + dir.file("s.txt"));
+  EXPECT_EQ(seeds_file.exit_code, 2);
+  EXPECT_NE(seeds_file.err.find("is the input file"), std::string::npos) << seeds_file.err;
+  std::filesystem::create_symlink(dir.file("s.txt"), dir.file("run.h5"));
+  const auto run_file = run(kVoronoi + " replay " + dir.file("s.txt") + " -o " + dir.file("run.h5"));
+  EXPECT_EQ(run_file.exit_code, 2);
+  EXPECT_NE(run_file.err.find("run.h5: is the input file " + dir.file("s.txt")), std::string::npos) << run_file.err;
+  EXPECT_EQ(read_text(dir.file("s.txt")), "0.5 0.5 0.5\n");
 }
 
 TEST(BwVoronoi, RandomSeedsAreReproducibleAndTheFileIsTheSame) {

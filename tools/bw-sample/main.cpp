@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
   app.add_flag("-v,--verbose", o.verbose, "Print counts, bounds, volumes and the options used");
 
   return bw::cli::run(app, argc, argv, [&] {
-    bw::check_output_file(o.output);  // before the work, not after it
+    bw::check_output_file(o.output, {o.mesh});  // before the work, not after it
     bw::Stopwatch clock;
     bw::mesh::ImportStats import;
     bw::TriMesh mesh = bw::mesh::import_mesh(o.mesh, {o.scale, o.weld}, &import);

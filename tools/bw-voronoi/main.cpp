@@ -122,7 +122,7 @@ int main(int argc, char** argv) {
     if (*replay) {
       if (p.index && (p.output == "-" || p.run == "-"))
         throw bw::InputError("replay --index: the run and fragments files must be files, not -");
-      bw::check_output_file(p.output);  // before the work, not after it
+      bw::check_output_file(p.output, {p.run});  // before the work, not after it
       bw::voronoi::ReplayOptions options;
       options.source = p.run;
       options.threads = p.threads;
@@ -139,7 +139,7 @@ int main(int argc, char** argv) {
       return result.passed() ? bw::kExitOk : bw::kExitCheckFailed;
     }
     if (!*seeds && !*random) throw bw::InputError("check: give the seeds with --seeds FILE or --random N");
-    if (!c.output.empty()) bw::check_output_file(c.output);
+    if (!c.output.empty()) bw::check_output_file(c.output, {c.input, c.seeds});
     // The report goes to standard output, unless the fragments file does.
     const bool report_to_stderr = c.output == "-";
     if (c.verbose) {
