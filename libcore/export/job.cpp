@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -36,6 +37,7 @@ ExportPlan plan_export(const ExportJob& job) {
   if (!job.mesh_format.empty() && job.mesh_format != "obj" && job.mesh_format != "ply")
     fail_input("--mesh '{}': expected obj or ply", job.mesh_format);
   if (!job.mesh_format.empty() && !job.water) fail_input("--mesh asks for the water, which --no-water leaves out");
+  if (job.density && !job.water) fail_input("--density asks for the water, which --no-water leaves out");
   if (!(job.mesh_adaptivity >= 0 && job.mesh_adaptivity <= 1))
     fail_input("--adaptivity {}: expected a value in [0, 1]", job.mesh_adaptivity);
   plan.frames = resolve_frames(job.frames_dir, job.range);
@@ -59,8 +61,11 @@ ExportPlan plan_export(const ExportJob& job) {
         fail_input("{}: /parameters/spacing is missing; give --spacing", plan.run_path);
       }
       plan.spacing_source = plan.run_path + ":/parameters/spacing";
+      if (!std::isfinite(plan.water_options.spacing))
+        fail_input("{}: the particle spacing {} is not finite; give --spacing", plan.spacing_source,
+                   plan.water_options.spacing);
     }
-    plan.water_options.resolve("bw-export");
+    plan.water_options.resolve("");
   }
 
   plan.solids = job.solids && !plan.run_path.empty() && !run.solids.empty();

@@ -40,17 +40,23 @@ struct ParticleList {
 Vec3d to_up(const Vec3d& p, Up up) { return up == Up::kZ ? p : Vec3d(p.x(), p.z(), -p.y()); }
 
 void WaterOptions::resolve(const std::string& where) {
-  if (!(spacing > 0) || !std::isfinite(spacing)) fail_input("{}: the particle spacing {} is not positive", where, spacing);
+  const std::string at = where.empty() ? std::string() : where + ": ";
+  if (!(spacing > 0) || !std::isfinite(spacing)) fail_input("{}the particle spacing {} is not positive", at, spacing);
   if (radius == 0) radius = kRadiusFactor * spacing;
-  if (!(radius > 0) || !std::isfinite(radius)) fail_input("{}: --radius {} is not positive", where, radius);
+  if (!(radius > 0) || !std::isfinite(radius)) fail_input("{}--radius {} is not positive", at, radius);
   if (voxel == 0) voxel = radius / kVoxelsPerRadius;
-  if (!(voxel > 0) || !std::isfinite(voxel)) fail_input("{}: --voxel {} is not positive", where, voxel);
+  if (!(voxel > 0) || !std::isfinite(voxel)) fail_input("{}--voxel {} is not positive", at, voxel);
+  if (voxel < kMinVoxel)
+    fail_input("{}the voxel edge {} m (--voxel) is under {} m, the smallest OpenVDB takes", at, voxel, kMinVoxel);
   if (radius < 1.5 * voxel)
-    fail_input("{}: --radius {} m is under 1.5 voxels of {} m; OpenVDB would drop every particle", where, radius,
-               voxel);
-  if (smooth < 0) fail_input("{}: --smooth {} is negative", where, smooth);
-  if (!(erode >= 0) || !std::isfinite(erode)) fail_input("{}: --erode {} is negative", where, erode);
-  if (!(half_width >= 2)) fail_input("{}: the narrow band of {} voxels is under 2", where, half_width);
+    fail_input("{}--radius {} m is under 1.5 voxels of {} m; OpenVDB would drop every particle", at, radius, voxel);
+  if (radius > kMaxVoxelsPerRadius * voxel)
+    fail_input("{}--radius {} m spans {:.0f} voxels of {} m, more than {}: each sphere would cost about {:.2g} voxels "
+               "to draw; give a larger --voxel",
+               at, radius, radius / voxel, voxel, kMaxVoxelsPerRadius, std::pow(2 * radius / voxel, 3));
+  if (smooth < 0) fail_input("{}--smooth {} is negative", at, smooth);
+  if (!(erode >= 0) || !std::isfinite(erode)) fail_input("{}--erode {} is negative", at, erode);
+  if (!(half_width >= 2)) fail_input("{}the narrow band of {} voxels is under 2", at, half_width);
 }
 
 struct WaterSurface::Grid {

@@ -35,8 +35,8 @@ struct WaterOptions {
   double half_width = 3;   // narrow band, voxels on each side of the surface
   Up up = Up::kZ;
 
-  // Fills in the defaults and checks the values; `where` prefixes messages.
-  // Throws InputError.
+  // Fills in the defaults and checks the values; `where`, when not empty, prefixes
+  // messages. Throws InputError.
   void resolve(const std::string& where);
 };
 
@@ -45,6 +45,12 @@ struct WaterOptions {
 // spheres below 1.5 voxels) at a grid eight times finer than the particles.
 inline constexpr double kRadiusFactor = 1.0;
 inline constexpr double kVoxelsPerRadius = 2.0;
+// The smallest voxel edge OpenVDB takes (m): its transforms refuse a voxel volume
+// under 3e-15.
+inline constexpr double kMinVoxel = 1.5e-5;
+// The most voxels a sphere's radius may span: drawing a sphere visits about
+// (2 x that)^3 voxels, and at 40 a frame of 2000 particles takes 8 s and 0.9 GB.
+inline constexpr double kMaxVoxelsPerRadius = 64;
 
 struct WaterStats {
   std::size_t particles = 0;      // rasterized (finite positions)

@@ -50,7 +50,14 @@ TEST(ExportTool, BadInputsWriteNothing) {
       {dir.file("frames") + out + " --frames 1:7", "frame 3 is missing: " + dir.file("frames") + "/000003.h5"},
       {dir.file("frames") + out + " --frames 2:1", "--frames '2:1': the range is empty (first > last)"},
       {dir.file("frames") + out + " --no-water --no-solids", "nothing to export"},
-      {dir.file("frames") + out + " --radius 0.01 --voxel 0.01", "--radius 0.01 m is under 1.5 voxels of 0.01 m"},
+      {dir.file("frames") + out + " --radius 0.01 --voxel 0.01",
+       "bw-export: --radius 0.01 m is under 1.5 voxels of 0.01 m"},
+      // OpenVDB's smallest voxel (its transform throws below it), given or from the radius.
+      {dir.file("frames") + out + " --voxel 1e-6",
+       "bw-export: the voxel edge 1e-06 m (--voxel) is under 1.5e-05 m, the smallest OpenVDB takes"},
+      {dir.file("frames") + out + " --radius 1e-6", "the voxel edge 5e-07 m (--voxel)"},
+      {dir.file("frames") + out + " --radius 0.05 --voxel 0.0005", "--radius 0.05 m spans 100 voxels of 0.0005 m, more than 64"},
+      {dir.file("frames") + out + " --no-water --density", "--density asks for the water, which --no-water leaves out"},
       {dir.file("frames") + out + " --fragments " + dir.file("u.h5"), "u.h5: is a 'particles' file, expected a 'fragments' file"},
       {dir.file("frames") + out + " --run " + dir.file("frames/000000.h5"), "000000.h5: is a 'frame' file, expected a 'run' file"},
   };
