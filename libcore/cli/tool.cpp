@@ -29,6 +29,7 @@ std::string shortest(double v) { return fmt::format("{}", v); }
 
 }  // namespace
 
+const CLI::Validator kFinite = number_check([](double) { return true; }, "a finite number", "FINITE");
 const CLI::Validator kPositive = number_check([](double v) { return v > 0; }, "a positive number", "POSITIVE");
 const CLI::Validator kNonNegative =
     number_check([](double v) { return v >= 0; }, "a number >= 0", "NONNEGATIVE");

@@ -30,6 +30,7 @@ void note(const CLI::App& app, const std::string& message);
 
 // CLI11 validators whose errors name the value and what was expected in a few words
 // (CLI11's own print their bounds to six decimals, the largest double in full).
+extern const CLI::Validator kFinite;       // a finite number (CLI11 takes nan and inf)
 extern const CLI::Validator kPositive;     // a finite number > 0
 extern const CLI::Validator kNonNegative;  // a finite number >= 0
 CLI::Validator in_range(double lo, double hi);  // a finite number from lo to hi

@@ -210,4 +210,32 @@ TEST(BwMeasure, GaugeThroughTheTool) {
   EXPECT_EQ(bw::test::line_count(typo.err), 1) << typo.err;
 }
 
+// Numbers CLI11 and scanf take but no measurement can use (nan, inf), and two columns
+// of one name, are bad input that names the option.
+TEST(BwMeasure, NonFiniteNumbersAndTwiceUsedNamesAreRefused) {
+  bw::test::TempDir dir;
+  bw::write_frame(block({0, 0, 0}, {0.2, 0.2, 0.1}, 0.01, 0), bw::frame_file_name(dir.path(), 0));
+  const std::string tool = bw::test::tool("bw-measure") + " ";
+  const std::string frames = dir.path();
+  const std::pair<std::string, std::string> cases[] = {
+      {"probe " + frames + " --point nan,0,0 --radius 0.02", "--point: 'nan' must be a finite number"},
+      {"probe " + frames + " --point 0,inf,0 --radius 0.02", "--point: 'inf' must be a finite number"},
+      {"gauge " + frames + " --at 0.1,0.1 --radius 0.01 --bottom -inf", "--bottom: '-inf' must be a finite number"},
+      {"gauge " + frames + " --at H=0.1,nan --radius 0.01", "--at 'H=0.1,nan': expected NAME=x,y or x,y (m), finite"},
+      {"gauge " + frames + " --at H=0.1,0.1 --at H=0.2,0.1 --radius 0.01", "--at 'H=0.2,0.1': a second gauge named H"},
+      {"sensor " + frames + " --at P=0,0.1,0.05 --at P=0,0.1,0.06 --normal 1,0,0 --h 0.02",
+       "--at 'P=0,0.1,0.06': a second sensor named P"},
+      {"sensor " + frames + " --at P=0,0.1,inf --normal 1,0,0 --h 0.02", "--at 'P=0,0.1,inf': expected NAME=x,y,z"},
+      {"sensor " + frames + " --at P=0,0.1,0.05 --normal 1,0,nan --h 0.02", "--normal: 'nan' must be a finite number"},
+      {"dambreak " + frames + " --width 0.1 --band 0.02 --wall inf", "--wall: 'inf' must be a finite number"},
+  };
+  for (const auto& [args, message] : cases) {
+    const auto r = bw::test::run(tool + args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(bw::test::line_count(r.err), 1) << r.err;
+    EXPECT_EQ(r.out, "") << args;
+  }
+}
+
 }  // namespace

@@ -20,6 +20,9 @@ TEST(CliValidators, PositiveAndNonNegativeNameTheValue) {
   EXPECT_EQ(verdict(bw::cli::kNonNegative, "0"), "");
   EXPECT_EQ(verdict(bw::cli::kNonNegative, "-0.25"), "'-0.25' must be a number >= 0");
   EXPECT_EQ(verdict(bw::cli::kNonNegative, ""), "'' is not a number");
+  EXPECT_EQ(verdict(bw::cli::kFinite, "-1e300"), "");
+  EXPECT_EQ(verdict(bw::cli::kFinite, "nan"), "'nan' must be a finite number");
+  EXPECT_EQ(verdict(bw::cli::kFinite, "-inf"), "'-inf' must be a finite number");
 }
 
 TEST(CliValidators, RangeIncludesItsBoundsAndPrintsThemShort) {

@@ -60,8 +60,9 @@ bw::analysis::Sensor parse_sensor(const std::string& text, std::size_t index) {
   s.name = name;
   double v[3];
   char tail = 0;
-  if (s.name.empty() || std::sscanf(coords.c_str(), "%lf,%lf,%lf%c", &v[0], &v[1], &v[2], &tail) != 3)
-    bw::fail_input("--at '{}': expected NAME=x,y,z or x,y,z (m)", text);
+  if (s.name.empty() || std::sscanf(coords.c_str(), "%lf,%lf,%lf%c", &v[0], &v[1], &v[2], &tail) != 3 ||
+      !std::isfinite(v[0] + v[1] + v[2]))
+    bw::fail_input("--at '{}': expected NAME=x,y,z or x,y,z (m), finite numbers", text);
   s.point = {v[0], v[1], v[2]};
   return s;
 }
@@ -79,8 +80,12 @@ std::vector<GaugeLine> parse_gauges(const std::vector<std::string>& texts) {
     const auto [name, coords] = split_named(texts[k], texts.size() == 1 ? "elevation" : "G" + std::to_string(k + 1));
     g.name = name;
     char tail = 0;
-    if (g.name.empty() || std::sscanf(coords.c_str(), "%lf,%lf%c", &g.x, &g.y, &tail) != 2)
-      bw::fail_input("--at '{}': expected NAME=x,y or x,y (m)", texts[k]);
+    if (g.name.empty() || std::sscanf(coords.c_str(), "%lf,%lf%c", &g.x, &g.y, &tail) != 2 ||
+        !std::isfinite(g.x + g.y))
+      bw::fail_input("--at '{}': expected NAME=x,y or x,y (m), finite numbers", texts[k]);
+    for (const GaugeLine& other : lines)
+      if (other.name == g.name)
+        bw::fail_input("--at '{}': a second gauge named {}; the columns need names of their own", texts[k], g.name);
     lines.push_back(g);
   }
   return lines;
@@ -246,6 +251,8 @@ int run_sensor(const Options& o) {
   std::vector<std::string> columns{"time"};
   for (std::size_t k = 0; k < o.sensors.size(); ++k) {
     bw::analysis::Sensor s = parse_sensor(o.sensors[k], k);
+    if (std::find(columns.begin() + 1, columns.end(), s.name) != columns.end())
+      bw::fail_input("--at '{}': a second sensor named {}; the columns need names of their own", o.sensors[k], s.name);
     s.normal = normal.normalized();
     s.radius = o.radius;
     s.h = o.h;
@@ -294,8 +301,9 @@ int main(int argc, char** argv) {
   dambreak->add_option("--width", o.dambreak.column_width, "Width a of the released column (m)")
       ->required()
       ->check(bw::cli::kPositive);
-  dambreak->add_option("--wall", o.dambreak.wall, "x of the back wall the column stands against (m)");
-  dambreak->add_option("--floor", o.dambreak.floor, "z of the floor (m)");
+  dambreak->add_option("--wall", o.dambreak.wall, "x of the back wall the column stands against (m)")
+      ->check(bw::cli::kFinite);
+  dambreak->add_option("--floor", o.dambreak.floor, "z of the floor (m)")->check(bw::cli::kFinite);
   dambreak->add_option("--band", o.dambreak.band, "Particles this close to the floor or wall count (m); ~2 spacings")
       ->required()
       ->check(bw::cli::kPositive);
@@ -305,7 +313,11 @@ int main(int argc, char** argv) {
 
   CLI::App* probe = app.add_subcommand("probe", "A field at a point, kernel-averaged over the fluid particles");
   frames_option(probe);
-  probe->add_option("--point", o.point, "x,y,z of the probe (m)")->required()->delimiter(',')->expected(3);
+  probe->add_option("--point", o.point, "x,y,z of the probe (m)")
+      ->required()
+      ->delimiter(',')
+      ->expected(3)
+      ->check(bw::cli::kFinite);
   probe->add_option("--field", o.field, "p, rho, speed, vx, vy or vz");
   probe->add_option("--radius", o.radius, "Kernel support (m), e.g. the smoothing length h")
       ->required()
@@ -318,14 +330,15 @@ int main(int argc, char** argv) {
       ->required();
   sensor->add_option("--normal", o.normal, "nx,ny,nz: the face's normal, into the fluid")
       ->delimiter(',')
-      ->expected(3);
+      ->expected(3)
+      ->check(bw::cli::kFinite);
   sensor->add_option("--radius", o.radius, "Radius of the sensor's disc (m); 0: a point")->check(bw::cli::kNonNegative);
   sensor->add_option("--h", o.h, "Kernel support (m): the run's smoothing length")->required()->check(bw::cli::kPositive);
   sensor->add_option("--offset", o.offset, "Distance into the fluid the pressure is read at (m); default h/2")
       ->check(bw::cli::kNonNegative);
   sensor->add_option("--rho0", o.rho0, "Density for the hydrostatic correction over the offset (kg/m^3)")
       ->check(bw::cli::kPositive);
-  sensor->add_option("--gravity", o.gravity, "gx,gy,gz (m/s^2)")->delimiter(',')->expected(3);
+  sensor->add_option("--gravity", o.gravity, "gx,gy,gz (m/s^2)")->delimiter(',')->expected(3)->check(bw::cli::kFinite);
 
   CLI::App* loads = app.add_subcommand(
       "loads", "Force (mean since the previous frame, N) and impulse (since t = 0, N s) of the fluid on a solid");
@@ -358,7 +371,8 @@ int main(int argc, char** argv) {
       ->check(bw::cli::kPositive);
   gauge->add_option("--bottom", o.bottom,
                     "The floor under the gauge (m): the line is dry (NaN) until a particle lies within --gap of it "
-                    "(default: the column starts at its lowest particle)");
+                    "(default: the column starts at its lowest particle)")
+      ->check(bw::cli::kFinite);
 
   return bw::cli::run(app, argc, argv, [&] {
     if (dambreak->parsed()) return run_dambreak(o);
