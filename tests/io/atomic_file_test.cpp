@@ -2,7 +2,9 @@
 // (/dev/null, a FIFO) get the bytes copied in, never a regular file in their place.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -26,6 +28,26 @@ std::string slurp(const std::string& path) {
   ss << in.rdbuf();
   return ss.str();
 }
+
+// Reads a FIFO to its end on another thread. Should the writer fail before it opens
+// the FIFO, the destructor opens it once to unblock the reader, so a failing test
+// ends instead of hanging.
+class FifoReader {
+ public:
+  explicit FifoReader(std::string path)
+      : path_(std::move(path)), bytes_(std::async(std::launch::async, [p = path_] { return slurp(p); })) {}
+  ~FifoReader() {
+    if (!bytes_.valid()) return;
+    const int fd = ::open(path_.c_str(), O_WRONLY | O_NONBLOCK);
+    if (fd >= 0) ::close(fd);
+    bytes_.wait();
+  }
+  std::string get() { return bytes_.get(); }
+
+ private:
+  std::string path_;
+  std::future<std::string> bytes_;
+};
 
 TEST(AtomicFile, ReplacesAFileAndLeavesNoTemporary) {
   TempDir dir;
@@ -54,7 +76,7 @@ TEST(AtomicFile, CopiesIntoAPipe) {
   TempDir dir;
   const std::string fifo = dir.file("pipe");
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-  auto reader = std::async(std::launch::async, [&] { return slurp(fifo); });
+  FifoReader reader(fifo);
   std::string temp;
   {
     bw::AtomicFile file(fifo);
@@ -73,7 +95,7 @@ TEST(AtomicFile, AnHdf5FileIntoAPipeReadsBack) {
   TempDir dir;
   const std::string fifo = dir.file("pipe");
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-  auto reader = std::async(std::launch::async, [&] { return slurp(fifo); });
+  FifoReader reader(fifo);
   {
     bw::h5::File file = bw::h5::File::create(fifo, "test");
     file.root().set_attr("answer", 42.0);
