@@ -12,6 +12,7 @@
 #include <iterator>
 
 #include "common/error.h"
+#include "common/input_file.h"
 #include "common/terminal.h"
 
 static_assert(std::is_same_v<hid_t, std::int64_t>, "h5.h stores hid_t as int64_t");
@@ -473,7 +474,7 @@ Id memory_access_plist() {
 }  // namespace
 
 bool is_hdf5_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(seekable_path(path), std::ios::binary);
   if (!in) return false;
   std::vector<char> head(8192);
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
@@ -527,13 +528,14 @@ File File::open(const std::string& path, std::string_view expected_kind) {
     if (file.file_.get() < 0) fail_input("<stdin>: cannot read the HDF5 file: {}", hdf5_reason());
   } else {
     file.name_ = path;
-    std::ifstream probe(path, std::ios::binary);
+    const std::string source = seekable_path(path);  // a pipe's copy: HDF5 seeks
+    std::ifstream probe(source, std::ios::binary);
     if (!probe) fail_input("{}: cannot open: {}", path, std::strerror(errno));
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) fail_input("{}: is a folder, not an HDF5 file", path);
-    if (!is_hdf5_file(path)) fail_input("{}: not an HDF5 file", path);
+    if (!is_hdf5_file(source)) fail_input("{}: not an HDF5 file", path);
     Id fapl = file_access_plist();
-    file.file_ = Id(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()));
+    file.file_ = Id(H5Fopen(source.c_str(), H5F_ACC_RDONLY, fapl.get()));
     if (file.file_.get() < 0) fail_input("{}: cannot read the HDF5 file: {}", path, hdf5_reason());
   }
   Id root = check_id(H5Gopen2(file.file_.get(), "/", H5P_DEFAULT), file.name_);

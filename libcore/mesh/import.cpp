@@ -11,6 +11,7 @@
 #include <assimp/scene.h>
 
 #include "common/error.h"
+#include "common/input_file.h"
 #include "mesh/weld.h"
 
 namespace bw::mesh {
@@ -46,8 +47,9 @@ void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
 
 TriMesh import_mesh(const std::string& path, const ImportOptions& options, ImportStats* stats_out) {
   if (!(options.scale > 0) || !std::isfinite(options.scale)) fail_input("{}: scale {} must be a positive number", path, options.scale);
+  const std::string source = seekable_path(path);  // a pipe's copy: assimp seeks
   {
-    std::ifstream probe(path, std::ios::binary);
+    std::ifstream probe(source, std::ios::binary);
     if (!probe) fail_input("{}: cannot open: {}", path, std::strerror(errno));
     if (std::filesystem::is_directory(path)) fail_input("{}: is a folder, expected a mesh file", path);
     if (probe.peek() == std::ifstream::traits_type::eof()) fail_input("{}: empty file", path);
@@ -56,7 +58,7 @@ TriMesh import_mesh(const std::string& path, const ImportOptions& options, Impor
   // Points and lines are dropped; polygons are triangulated.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure);
+      source, aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure);
   if (!scene || !scene->mRootNode) {
     std::string reason = importer.GetErrorString();
     for (char& c : reason)

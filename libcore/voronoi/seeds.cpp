@@ -10,6 +10,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/input_file.h"
 #include "io/h5.h"
 
 namespace bw::voronoi {
@@ -34,7 +35,7 @@ std::vector<Vec3d> read_seeds_hdf5(const std::string& path) {
 }
 
 std::vector<Vec3d> read_seeds_text(const std::string& path) {
-  std::ifstream in(path);
+  std::ifstream in(seekable_path(path));  // a pipe's copy, which is_hdf5_file has read already
   if (!in) fail_input("{}: cannot open the seeds file", path);
   std::vector<Vec3d> seeds;
   std::string line;

@@ -1,6 +1,7 @@
 // bw-sample and bw-info as users run them.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "io/h5.h"
@@ -48,6 +49,25 @@ TEST(BwSample, SamplesAndDescribesThroughAPipe) {
   EXPECT_EQ(run("cmp " + dir.file("a.h5") + " " + dir.file("b.h5")).exit_code, 0);
   const auto solid = bw::read_particles(dir.file("b.h5"));
   EXPECT_EQ(solid.voxels.size(), 512u);
+}
+
+// Process substitution hands a tool a pipe by name (/dev/fd/N), which HDF5 and assimp
+// cannot seek in: the tools read it through a temporary copy, which they remove.
+TEST(BwSample, ReadsMeshesAndParticleFilesFromPipesByName) {
+  TempDir dir;
+  bw::mesh::export_mesh(bw::mesh::box({0, 0, 0}, {1, 1, 1}), dir.file("cube.obj"));
+  const std::string tmp = "TMPDIR=" + dir.file("tmp") + " ";
+  std::filesystem::create_directories(dir.file("tmp"));
+  const auto piped = run("bash -c '" + tmp + kSample + " <(cat " + dir.file("cube.obj") + ") --spacing 0.125 --volume -o " +
+                         dir.file("a.h5") + " && " + tmp + kInfo + " <(cat " + dir.file("a.h5") + ") --json'");
+  ASSERT_EQ(piped.exit_code, 0) << piped.err;
+  EXPECT_NE(piped.out.find("\"kind\": \"particles\""), std::string::npos) << piped.out;
+  EXPECT_NE(piped.out.find("\"voxels\": 512"), std::string::npos) << piped.out;
+  EXPECT_EQ(bw::test::list_folder(dir.file("tmp")), "");
+  const auto garbage = run("bash -c '" + kInfo + " <(echo not hdf5)'");
+  EXPECT_EQ(garbage.exit_code, 2);
+  EXPECT_NE(garbage.err.find(": not an HDF5 file"), std::string::npos) << garbage.err;
+  EXPECT_EQ(bw::test::line_count(garbage.err), 1) << garbage.err;
 }
 
 TEST(BwSample, VerbosePrintsCountsBoundsAndVolumes) {
