@@ -22,6 +22,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// "no such file", and for a relative path where it was looked for: relative paths
+// start at the scene's folder, not the working one.
+std::string no_such_file(const std::string& given, const fs::path& looked_at) {
+  if (fs::path(given).is_absolute()) return given + ": no such file";
+  return fmt::format("{}: no such file ({}; a relative path starts at the scene's folder)", given,
+                     looked_at.lexically_normal().string());
+}
+
 // Tables another tool owns (bw-render documents them in docs/rendering.md); the
 // simulator accepts them as they are.
 const std::set<std::string> kForeignTables = {"camera", "light", "render"};
@@ -445,7 +453,7 @@ std::vector<std::vector<double>> read_keys(Reader& r, const Scene& s, std::strin
     fs::path p(given->get());
     if (p.is_relative()) p = fs::path(s.folder) / p;
     std::ifstream in(p);
-    if (!in) r.fail(key, fmt::format("{}: {}", given->get(), fs::exists(p) ? "cannot be read" : "no such file"));
+    if (!in) r.fail(key, fs::exists(p) ? given->get() + ": cannot be read" : no_such_file(given->get(), p));
     std::string line;
     bool first = true;  // the first line that is not blank or a comment may name the columns
     for (int number = 1; std::getline(in, line); ++number) {
@@ -530,7 +538,7 @@ void read_solid(Reader& r, Scene& s) {
   if (p.is_relative()) p = fs::path(s.folder) / p;
   p = p.lexically_normal();
   std::error_code ec;
-  if (!fs::exists(p, ec)) r.fail("particles", fmt::format("{}: no such file", given));
+  if (!fs::exists(p, ec)) r.fail("particles", no_such_file(given, p));
   if (fs::is_directory(p, ec)) r.fail("particles", fmt::format("{}: is a folder, not a particle file", given));
   solid.particles = p.string();
   solid.particles_given = given;

@@ -2,6 +2,7 @@
 // docs/scene.md, and each bad input is an InputError whose one-line message names
 // the file and the key's path.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -412,6 +413,11 @@ TEST(SceneErrors, MissingAndMistypedValues) {
   expect_error(f, kMinimal + "[fluid]\nmax_particles = 1.5\n", "fluid.max_particles: 1.5 is not a whole number");
   expect_error(f, kMinimal + "[[solid]]\nname = \"x\"\n", "solid[0].particles: missing");
   expect_error(f, kMinimal + "[[solid]]\nparticles = \"nowhere.h5\"\n", "solid[0].particles: nowhere.h5: no such file");
+  // A relative path says where it was looked for: the scene's folder, not the working one.
+  expect_error(f, kMinimal + "[[solid]]\nparticles = \"../nowhere.h5\"\n",
+               "solid[0].particles: ../nowhere.h5: no such file (" +
+                   std::filesystem::path(f.dir.path()).parent_path().string() +
+                   "/nowhere.h5; a relative path starts at the scene's folder)");
   expect_error(f, kMinimal + "[camera]\n[[camera]]\n", "scene.toml:");
 }
 
