@@ -9,7 +9,7 @@
 namespace bw {
 
 // A path to read `path` through: a pipe's or a device's temporary copy (removed when
-// the process ends), or `path` itself for anything else (a regular file, a missing
+// the process ends, also by SIGINT, SIGTERM or SIGHUP), or `path` itself for anything else (a regular file, a missing
 // one, a folder), whose errors the reader reports. Throws InputError when the pipe
 // cannot be read.
 std::string seekable_path(const std::string& path);

@@ -64,6 +64,11 @@ TEST(BwSample, ReadsMeshesAndParticleFilesFromPipesByName) {
   EXPECT_NE(piped.out.find("\"kind\": \"particles\""), std::string::npos) << piped.out;
   EXPECT_NE(piped.out.find("\"voxels\": 512"), std::string::npos) << piped.out;
   EXPECT_EQ(bw::test::list_folder(dir.file("tmp")), "");
+  // Stopped by a signal while it reads the pipe, a tool leaves no copy behind either.
+  const auto stopped = run("bash -c '" + tmp + "timeout -s INT 1 " + kInfo + " <(cat " + dir.file("a.h5") +
+                           "; exec sleep 3 2> /dev/null)'");
+  EXPECT_EQ(stopped.exit_code, 124) << stopped.err;
+  EXPECT_EQ(bw::test::list_folder(dir.file("tmp")), "");
   const auto garbage = run("bash -c '" + kInfo + " <(echo not hdf5)'");
   EXPECT_EQ(garbage.exit_code, 2);
   EXPECT_NE(garbage.err.find(": not an HDF5 file"), std::string::npos) << garbage.err;
