@@ -246,9 +246,30 @@ void write_run_index(const RunIndex& index, const std::string& path) {
   write_file_atomically(path, text.data(), text.size());
 }
 
+namespace {
+
+std::string outdir_of(const std::string& run_path) {
+  return fs::path(run_path).parent_path().empty() ? "." : fs::path(run_path).parent_path().string();
+}
+
+}  // namespace
+
+void check_fragments_beside_run(const std::string& run_path, const std::string& fragments_path) {
+  if (fragments_path.empty() || fragments_path == "-") return;
+  const std::string outdir = outdir_of(run_path);
+  std::error_code ec;
+  const fs::path fragments = fs::weakly_canonical(fragments_path, ec);
+  for (const fs::path& written : {fs::path(outdir) / kMeshesName, fs::path(run_index_path(outdir))}) {
+    if (!ec && fs::weakly_canonical(written, ec) == fragments)
+      fail_input("{}: is where the index writes {}; give the fragments file another name", fragments_path,
+                 written.filename().string());
+  }
+}
+
 MeshesReport write_run_meshes(const std::string& run_path, const std::string& fragments_path) {
   if (run_path == "-") fail_input("-: the run file must be a file beside its frames folder, not standard input");
-  const std::string outdir = fs::path(run_path).parent_path().empty() ? "." : fs::path(run_path).parent_path().string();
+  check_fragments_beside_run(run_path, fragments_path);
+  const std::string outdir = outdir_of(run_path);
   RunIndex index = scan_run(outdir);
   const RunRecord run = read_run(run_path);
 

@@ -73,4 +73,8 @@ struct MeshesReport {
 // rewrites OUTDIR/run.xdmf2 with the meshes. Throws InputError naming the file at fault.
 MeshesReport write_run_meshes(const std::string& run_path, const std::string& fragments_path);
 
+// Throws InputError unless `fragments_path` is free of what write_run_meshes writes
+// beside `run_path` (OUTDIR/meshes.h5, OUTDIR/run.xdmf2), which would replace it.
+void check_fragments_beside_run(const std::string& run_path, const std::string& fragments_path);
+
 }  // namespace bw

@@ -272,4 +272,21 @@ TEST(FragmentsFile, RoundTrip) {
   EXPECT_EQ(r.fragments[0].volume, 1.0 / 6);
 }
 
+// The index writes OUTDIR/meshes.h5 and OUTDIR/run.xdmf2: a fragments file under
+// either name, by any spelling, would be replaced by them.
+TEST(RunIndex, FragmentsMayNotTakeTheNamesTheIndexWrites) {
+  TempDir dir;
+  const std::string run = dir.file("run.h5");
+  EXPECT_THROW(bw::check_fragments_beside_run(run, dir.file("meshes.h5")), bw::InputError);
+  EXPECT_THROW(bw::check_fragments_beside_run(run, dir.path() + "/./run.xdmf2"), bw::InputError);
+  EXPECT_NO_THROW(bw::check_fragments_beside_run(run, dir.file("fragments.h5")));
+  EXPECT_NO_THROW(bw::check_fragments_beside_run(run, ""));
+  try {
+    bw::check_fragments_beside_run(run, dir.file("meshes.h5"));
+  } catch (const bw::InputError& e) {
+    EXPECT_EQ(std::string(e.what()), dir.file("meshes.h5") +
+                                         ": is where the index writes meshes.h5; give the fragments file another name");
+  }
+}
+
 }  // namespace

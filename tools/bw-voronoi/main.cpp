@@ -123,6 +123,7 @@ int main(int argc, char** argv) {
       if (p.index && (p.output == "-" || p.run == "-"))
         throw bw::InputError("replay --index: the run and fragments files must be files, not -");
       bw::check_output_file(p.output, {p.run});  // before the work, not after it
+      if (p.index) bw::check_fragments_beside_run(p.run, p.output);
       bw::voronoi::ReplayOptions options;
       options.source = p.run;
       options.threads = p.threads;
