@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/temp_files.h"
 
 namespace bw {
 namespace fs = std::filesystem;
@@ -107,6 +108,7 @@ AtomicFile::AtomicFile(std::string path) : final_path_(std::move(path)) {
   target_path_ = target.path;
   stream_ = target.stream;
   temp_path_ = temp_name_for(target_path_, stream_ ? fs::temp_directory_path() : fs::path(target_path_).parent_path());
+  ticket_ = remember_temp_file(temp_path_);
 }
 
 AtomicFile::~AtomicFile() { discard(); }
@@ -116,8 +118,10 @@ AtomicFile::AtomicFile(AtomicFile&& other) noexcept
       target_path_(std::move(other.target_path_)),
       temp_path_(std::move(other.temp_path_)),
       stream_(other.stream_),
-      committed_(other.committed_) {
+      committed_(other.committed_),
+      ticket_(other.ticket_) {
   other.temp_path_.clear();
+  other.ticket_ = -1;
 }
 
 AtomicFile& AtomicFile::operator=(AtomicFile&& other) noexcept {
@@ -128,7 +132,9 @@ AtomicFile& AtomicFile::operator=(AtomicFile&& other) noexcept {
     temp_path_ = std::move(other.temp_path_);
     stream_ = other.stream_;
     committed_ = other.committed_;
+    ticket_ = other.ticket_;
     other.temp_path_.clear();
+    other.ticket_ = -1;
   }
   return *this;
 }
@@ -146,6 +152,8 @@ void AtomicFile::commit() {
     fail_run("{}: cannot rename the finished file into place: {}", final_path_, std::strerror(err));
   }
   committed_ = true;
+  forget_temp_file(ticket_);
+  ticket_ = -1;
 }
 
 void AtomicFile::discard() noexcept {
@@ -153,6 +161,8 @@ void AtomicFile::discard() noexcept {
     std::error_code ec;
     fs::remove(temp_path_, ec);
     temp_path_.clear();
+    forget_temp_file(ticket_);
+    ticket_ = -1;
   }
 }
 

@@ -3,7 +3,8 @@
 // The data goes to a temporary file in the same folder (so that rename is atomic on
 // POSIX file systems); commit() renames it over the final name. If the object is
 // destroyed without commit (an exception, a failed run), the temporary file is
-// removed and whatever stood under the final name before is untouched.
+// removed and whatever stood under the final name before is untouched; so it is when
+// SIGINT, SIGTERM or SIGHUP stops the tool (common/temp_files.h).
 //
 // A final name that is a symbolic link is written through: the file it points to is
 // replaced and the link stays. One that is a device or a pipe (/dev/null, a FIFO,
@@ -41,6 +42,7 @@ class AtomicFile {
   std::string temp_path_;
   bool stream_ = false;      // the target is a device or a pipe: copied in, not renamed
   bool committed_ = false;
+  int ticket_ = -1;          // the temporary file's, for removal on a signal (temp_files.h)
 };
 
 // Writes `bytes` to `path` through an AtomicFile.

@@ -4,8 +4,11 @@
 
 #include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <future>
@@ -127,6 +130,27 @@ TEST(AtomicFile, ADeviceThatCannotBeWrittenIsBadInput) {
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0400), 0);
   if (::access(fifo.c_str(), W_OK) == 0) GTEST_SKIP() << "running as root: every file is writable";
   EXPECT_THROW(bw::check_output_file(fifo), bw::InputError);
+}
+
+// Stopped by a signal with a file half written, a tool leaves no temporary file: the
+// child writes one, then SIGTERM ends it as it would any tool, by the signal.
+TEST(AtomicFile, ASignalRemovesTheTemporaryFile) {
+  TempDir dir;
+  for (int signal : {SIGTERM, SIGINT, SIGHUP}) {
+    std::fflush(nullptr);
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      bw::AtomicFile file(dir.file("out.h5"));
+      std::ofstream(file.temp_path(), std::ios::binary) << "half";
+      ::raise(signal);
+      ::_exit(0);  // not reached
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal) << "status " << status;
+    EXPECT_EQ(bw::test::list_folder(dir.path()), "") << "signal " << signal;
+  }
 }
 
 }  // namespace
