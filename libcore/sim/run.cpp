@@ -120,6 +120,18 @@ namespace {
 
 const char* signal_name(int sig) { return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal"; }
 
+// An emitter that starts at or after the last frame emits nothing: a preview run
+// (--end-time) often ends before the water comes. Said, not refused.
+void warn_of_emitters_after_the_end(const scene::Scene& scene, double end_time, bool end_from_option) {
+  const double last = scene::last_frame(end_time, scene.time.frame_rate) / scene.time.frame_rate;
+  for (std::size_t i = 0; i < scene.emitters.size(); ++i) {
+    if (scene.emitters[i].start < last) continue;
+    fmt::print(stderr,
+               "bw-sim: warning: {}: fluid.emitter[{}] starts at {} s, and the run ends at {} s{}: it emits nothing\n",
+               scene.path, i, scene.emitters[i].start, last, end_from_option ? " (--end-time)" : "");
+  }
+}
+
 }  // namespace
 
 Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& device, RunOptions options)
@@ -234,6 +246,7 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
     }
   }
   if (s.resuming) read_checkpoint_state(checkpoint_path(s.options.output), *s.solver);
+  else warn_of_emitters_after_the_end(scene, s.end_time, s.options.end_time > 0);
 }
 
 Simulation::~Simulation() = default;

@@ -129,6 +129,25 @@ TEST(BwSim, WarnsOfASolidSampledBeforeTheConcaveEdgeRule) {
     EXPECT_NE(r.err.find(word), std::string::npos) << "lacks '" << word << "': " << r.err;
 }
 
+// A preview that ends before an emitter starts runs, and says the emitter does nothing;
+// a run long enough for it says nothing.
+TEST(BwSim, WarnsOfAnEmitterThatStartsAfterTheEnd) {
+  test::TempDir dir;
+  write_small_dambreak(dir);
+  std::ofstream(dir.file("scene.toml"), std::ios::app)
+      << "[[fluid.emitter]]\nshape = \"disc\"\ncenter = [0.15, 0.025, 0.15]\nnormal = [0, 0, -1]\nradius = 0.01\n"
+         "speed = 0.5\nstart = 0.1\n";
+  const std::string run = bw_sim() + " " + dir.file("scene.toml") + " --quiet -o ";
+  const auto preview = test::run(run + dir.file("preview") + " --end-time 0.075");
+  ASSERT_EQ(preview.exit_code, 0) << preview.err;
+  EXPECT_EQ(preview.err, "bw-sim: warning: " + dir.file("scene.toml") +
+                             ": fluid.emitter[0] starts at 0.1 s, and the run ends at 0.075 s (--end-time): it emits "
+                             "nothing\n");
+  const auto whole = test::run(run + dir.file("whole"));
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_EQ(whole.err, "");
+}
+
 TEST(BwSim, EndTimeOptionAndSummary) {
   test::TempDir dir;
   write_small_dambreak(dir);
