@@ -473,6 +473,27 @@ Id memory_access_plist() {
 
 }  // namespace
 
+namespace {
+
+// For a folder given as a file: the file a user likely meant in it, a bw-sim output
+// folder's run file or a frames folder's first frame.
+std::string folder_hint(const std::string& folder) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path run = fs::path(folder) / "run.h5";
+  if (fs::is_regular_file(run, ec)) return fmt::format(" (a bw-sim output folder; its run file is {})", run.string());
+  std::string first;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() == 9 && name.ends_with(".h5") && name.find_first_not_of("0123456789") == 6 &&
+        (first.empty() || name < fs::path(first).filename().string()))
+      first = it->path().string();
+  }
+  return first.empty() ? std::string() : fmt::format(" (a folder of frames, such as {})", first);
+}
+
+}  // namespace
+
 bool is_hdf5_file(const std::string& path) {
   std::ifstream in(seekable_path(path), std::ios::binary);
   if (!in) return false;
@@ -532,7 +553,8 @@ File File::open(const std::string& path, std::string_view expected_kind) {
     std::ifstream probe(source, std::ios::binary);
     if (!probe) fail_input("{}: cannot open: {}", path, std::strerror(errno));
     std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) fail_input("{}: is a folder, not an HDF5 file", path);
+    if (std::filesystem::is_directory(path, ec))
+      fail_input("{}: is a folder, not an HDF5 file{}", path, folder_hint(path));
     if (!is_hdf5_file(source)) fail_input("{}: not an HDF5 file", path);
     Id fapl = file_access_plist();
     file.file_ = Id(H5Fopen(source.c_str(), H5F_ACC_RDONLY, fapl.get()));

@@ -140,6 +140,17 @@ TEST(H5, NewerVersionAndForeignFilesAreRefused) {
   EXPECT_NE(input_error([&] { h5::File::open(dir.file("text.h5")); }).find("not an HDF5 file"), std::string::npos);
   EXPECT_NE(input_error([&] { h5::File::open(dir.file("missing.h5")); }).find("cannot open"), std::string::npos);
   EXPECT_EQ(input_error([&] { h5::File::open(dir.path()); }), dir.path() + ": is a folder, not an HDF5 file");
+  // A bw-sim output folder or its frames folder, given for a file, points to the file meant.
+  std::filesystem::create_directories(dir.file("out/frames"));
+  std::ofstream(dir.file("out/run.h5")) << "x";
+  std::ofstream(dir.file("out/frames/000012.h5")) << "x";
+  std::ofstream(dir.file("out/frames/000003.h5")) << "x";
+  EXPECT_EQ(input_error([&] { h5::File::open(dir.file("out")); }),
+            dir.file("out") + ": is a folder, not an HDF5 file (a bw-sim output folder; its run file is " +
+                dir.file("out/run.h5") + ")");
+  EXPECT_EQ(input_error([&] { h5::File::open(dir.file("out/frames")); }),
+            dir.file("out/frames") + ": is a folder, not an HDF5 file (a folder of frames, such as " +
+                dir.file("out/frames/000003.h5") + ")");
 }
 
 TEST(H5, TruncatedFileIsRefused) {
