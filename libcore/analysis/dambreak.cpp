@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <sstream>
 
 #include "common/error.h"
+#include "common/text.h"
 
 namespace bw::analysis {
 
@@ -28,8 +28,7 @@ DamBreakSample measure_dambreak(const FrameData& frame, const DamBreakSetup& set
 }
 
 DamBreakReference read_dambreak_reference(const std::string& csv_path) {
-  std::ifstream in(csv_path);
-  if (!in) fail_input("{}: cannot open", csv_path);
+  std::istringstream in(read_text_file(csv_path, "a reference CSV"));
   DamBreakReference ref;
   std::string line;
   int number = 0;

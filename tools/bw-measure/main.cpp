@@ -308,8 +308,7 @@ int main(int argc, char** argv) {
       ->required()
       ->check(bw::cli::kPositive);
   dambreak->add_option("--gravity", o.dambreak.gravity, "Gravity (m/s^2)")->check(bw::cli::kPositive);
-  dambreak->add_option("--reference", o.reference, "CSV of the experiment (series,T,value) to compare with")
-      ->check(CLI::ExistingFile);
+  dambreak->add_option("--reference", o.reference, "CSV of the experiment (series,T,value) to compare with");
 
   CLI::App* probe = app.add_subcommand("probe", "A field at a point, kernel-averaged over the fluid particles");
   frames_option(probe);
@@ -342,17 +341,14 @@ int main(int argc, char** argv) {
 
   CLI::App* loads = app.add_subcommand(
       "loads", "Force (mean since the previous frame, N) and impulse (since t = 0, N s) of the fluid on a solid");
-  loads->add_option("run", o.frames, "Run file (OUTDIR/run.h5 of bw-sim, with [output] loads = true)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  loads->add_option("run", o.frames, "Run file (OUTDIR/run.h5 of bw-sim, with [output] loads = true)")->required();
   loads->add_option("--solid", o.solid, "The solid's name (its [[solid]] name)")->required();
   loads->add_flag("--json", o.json, "Print JSON instead of CSV");
 
   CLI::App* sensors = app.add_subcommand(
       "sensors", "Pressure histories of the scene's [[sensor]]s, from the forces on the faces (Pa, from the run file)");
   sensors->add_option("run", o.frames, "Run file (OUTDIR/run.h5 of bw-sim, of a scene with [[sensor]] tables)")
-      ->required()
-      ->check(CLI::ExistingFile);
+      ->required();
   sensors->add_option("--sensor", o.names, "A sensor's name; repeat for more (default: all)");
   sensors->add_option("--window", o.window, "Average over windows of this many seconds, whole samples (default: each sample)")
       ->check(bw::cli::kPositive);
