@@ -238,4 +238,26 @@ TEST(BwMeasure, NonFiniteNumbersAndTwiceUsedNamesAreRefused) {
   }
 }
 
+// A folder or a missing file where a run file or a CSV belongs is named as such, in
+// the tools' words (not CLI11's "File is actually a directory").
+TEST(BwMeasure, FoldersAndMissingFilesAreNamedAsSuch) {
+  bw::test::TempDir dir;
+  bw::write_frame(block({0, 0, 0}, {0.2, 0.2, 0.1}, 0.01, 0), bw::frame_file_name(dir.path(), 0));
+  const std::string tool = bw::test::tool("bw-measure") + " ";
+  const std::pair<std::string, std::string> cases[] = {
+      {"loads " + dir.path() + " --solid wall", dir.path() + ": is a folder, not an HDF5 file (a folder of frames"},
+      {"sensors " + dir.file("run.h5"), dir.file("run.h5") + ": cannot open: No such file or directory"},
+      {"dambreak " + dir.path() + " --width 0.1 --band 0.02 --reference " + dir.path(),
+       dir.path() + ": is a folder, not a reference CSV"},
+      {"dambreak " + dir.path() + " --width 0.1 --band 0.02 --reference " + dir.file("mm.csv"),
+       dir.file("mm.csv") + ": no such file"},
+  };
+  for (const auto& [args, message] : cases) {
+    const auto r = bw::test::run(tool + args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(bw::test::line_count(r.err), 1) << r.err;
+  }
+}
+
 }  // namespace
