@@ -109,6 +109,11 @@ void require_checkpoint(const std::string& output) {
   const std::string path = checkpoint_path(output);
   std::error_code ec;
   if (fs::exists(path, ec)) return;
+  // --resume takes the folder bw-sim wrote to: say so for a file or a folder that is not there.
+  if (fs::is_regular_file(output, ec))
+    fail_input("--resume {}: is a file; give the output folder of the run ({})", output,
+               fs::path(output).parent_path().empty() ? "." : fs::path(output).parent_path().string());
+  if (!fs::is_directory(output, ec)) fail_input("--resume {}: no such folder", output);
   const fs::path run = fs::path(output) / "run.h5";
   const bool complete = fs::exists(run, ec) && h5::is_hdf5_file(run.string()) && read_run(run.string()).status == "complete";
   fail_input("{}: no checkpoint to resume from{}", path,

@@ -148,6 +148,27 @@ TEST(BwSim, WarnsOfAnEmitterThatStartsAfterTheEnd) {
   EXPECT_EQ(whole.err, "");
 }
 
+// --resume takes the output folder: a file or a missing folder is named as such, and a
+// complete run has nothing to go on from.
+TEST(BwSim, ResumeNamesWhatItWasGiven) {
+  test::TempDir dir;
+  write_small_dambreak(dir);
+  const auto first = test::run(bw_sim() + " " + dir.file("scene.toml") + " -q -o " + dir.file("out") + " --end-time 0.05");
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const std::pair<std::string, std::string> cases[] = {
+      {dir.file("out/run.h5"),
+       "--resume " + dir.file("out/run.h5") + ": is a file; give the output folder of the run (" + dir.file("out") + ")"},
+      {dir.file("none"), "--resume " + dir.file("none") + ": no such folder"},
+      {dir.file("out"), "checkpoint.h5: no checkpoint to resume from (the run in that folder is complete)"},
+  };
+  for (const auto& [folder, message] : cases) {
+    const auto r = test::run(bw_sim() + " --resume " + folder);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+    EXPECT_EQ(test::line_count(r.err), 1) << r.err;
+  }
+}
+
 TEST(BwSim, EndTimeOptionAndSummary) {
   test::TempDir dir;
   write_small_dambreak(dir);
