@@ -31,6 +31,7 @@ std::string human_duration(double seconds) {
 }
 
 std::string human_count(double count) {
+  if (count >= 1e12) return fmt::format("{:.2g}", count);  // beyond any run: the order is what matters
   if (count >= 1e9) return fmt::format("{:.2f} G", count / 1e9);
   if (count >= 1e6) return fmt::format("{:.2f} M", count / 1e6);
   if (count >= 1e4) return fmt::format("{:.0f} k", count / 1e3);

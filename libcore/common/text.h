@@ -12,7 +12,7 @@ namespace bw {
 std::string human_bytes(std::uint64_t bytes);
 // "12.3 s", "4 min 05 s", "2 h 03 min".
 std::string human_duration(double seconds);
-// "1.25 M", "730 k", "12".
+// "1.25 M", "730 k", "12"; from 1e12 on, "2.7e+16".
 std::string human_count(double count);
 // JSON string literal with quotes and escapes.
 std::string json_quote(std::string_view text);
