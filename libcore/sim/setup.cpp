@@ -746,6 +746,15 @@ Setup prepare(const scene::Scene& s, double end_time) {
     p.c0 = kSoundSpeedFactor * p.scene_speed;
     p.k = p.rho0 * p.c0 * p.c0 / p.gamma;
   }
+  // Slower than the water can move, the flow outruns its own sound and the fluid
+  // compresses far beyond the 1% weak compressibility assumes. Said, not refused: the
+  // scene's speed is a bound (a fall through the whole domain).
+  if (p.c0 < p.scene_speed)
+    fmt::print(stderr,
+               "bw-sim: warning: {}: fluid.{} gives a speed of sound of {:.3g} m/s, below the {:.3g} m/s the scene's "
+               "water can reach (its speeds and a fall through the domain): the fluid will compress far beyond the 1% "
+               "weak compressibility assumes (the default c0 is 10 x that speed)\n",
+               s.path, f.k > 0 ? "k" : "c0", p.c0, p.scene_speed);
   p.speed_limit = std::max(kGuardSpeedFactor * p.scene_speed, p.c0);
   p.continuity = f.density == scene::DensityScheme::continuity;
   p.diffusion = f.diffusion;
