@@ -60,7 +60,12 @@ class Spool {
     copies_[path] = name;
     const int err = copy_into(path, fd);
     ::close(fd);
-    if (err) fail_input("{}: cannot read the pipe: {}", path, std::strerror(err));
+    if (err) {
+      std::error_code ec;
+      fs::remove(name, ec);
+      copies_.erase(path);
+      fail_input("{}: cannot read the pipe: {}", path, std::strerror(err));
+    }
     return name;
   }
 
