@@ -80,7 +80,11 @@ std::string read_text_file(const std::string& path, const std::string& kind) {
   if (!in) fail_input("{}: cannot be read", path);
   std::stringstream text;
   text << in.rdbuf();
-  return text.str();
+  std::string bytes = text.str();
+  // A binary file given for a text one (a run file for a scene): say what it is.
+  if (bytes.rfind("\x89HDF\r\n\x1a\n", 0) == 0) fail_input("{}: is an HDF5 file, not {}", path, kind);
+  if (bytes.find('\0') != std::string::npos) fail_input("{}: is a binary file, not {}", path, kind);
+  return bytes;
 }
 
 }  // namespace bw

@@ -19,7 +19,7 @@ std::string json_quote(std::string_view text);
 
 // The whole of a text file given by a user, such as a scene. Throws InputError naming
 // `path` when it does not exist, is a folder (`kind` says what was expected: "a scene
-// file") or cannot be read.
+// file"), cannot be read or is binary (an HDF5 file, say).
 std::string read_text_file(const std::string& path, const std::string& kind);
 
 // The pieces of `text` between the separators, empty ones included ("a::b" gives

@@ -2,8 +2,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <string>
+#include <vector>
 
+#include "common/error.h"
 #include "common/text.h"
+#include "test_support.h"
 
 namespace {
 
@@ -29,6 +34,28 @@ TEST(Text, BytesAndDurations) {
 TEST(Text, SplitKeepsEmptyPieces) {
   EXPECT_EQ(bw::split("a::b", ':'), (std::vector<std::string>{"a", "", "b"}));
   EXPECT_EQ(bw::split("", ':'), (std::vector<std::string>{""}));
+}
+
+// What a user gives for a scene by mistake is named: a folder, a missing file, a run
+// file (HDF5) or another binary file.
+TEST(Text, ReadTextFileNamesWhatItGot) {
+  bw::test::TempDir dir;
+  std::ofstream(dir.file("scene.toml")) << "spacing = 0.02\n";
+  EXPECT_EQ(bw::read_text_file(dir.file("scene.toml"), "a scene file"), "spacing = 0.02\n");
+  const auto error = [&](const std::string& path) {
+    try {
+      bw::read_text_file(path, "a scene file");
+    } catch (const bw::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error(dir.file("none.toml")), dir.file("none.toml") + ": no such file");
+  EXPECT_EQ(error(dir.path()), dir.path() + ": is a folder, not a scene file");
+  std::ofstream(dir.file("run.h5"), std::ios::binary) << std::string("\x89HDF\r\n\x1a\n\0\0\0", 11);
+  EXPECT_EQ(error(dir.file("run.h5")), dir.file("run.h5") + ": is an HDF5 file, not a scene file");
+  std::ofstream(dir.file("mesh.stl"), std::ios::binary) << std::string("solid\0\x01\x02", 8);
+  EXPECT_EQ(error(dir.file("mesh.stl")), dir.file("mesh.stl") + ": is a binary file, not a scene file");
 }
 
 }  // namespace
