@@ -11,7 +11,10 @@
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -90,7 +93,36 @@ void remove_old_frames(const fs::path& folder, int from) {
 
 }  // namespace
 
+// Holds OUTDIR for one bw-sim at a time: a second run into the same folder (a repeated
+// command, make -j, a job started twice) would interleave frames with the first. An
+// flock on the folder itself leaves no file behind and goes with the process, however
+// it ends.
+namespace {
+class FolderLock {
+ public:
+  FolderLock() = default;
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+  ~FolderLock() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  void lock(const std::string& folder) {
+    fd_ = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd_ < 0) fail_run("{}: cannot open the folder: {}", folder, std::strerror(errno));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      if (errno == EWOULDBLOCK)
+        fail_input("{}: another bw-sim is writing to this folder; wait for it, stop it, or give another -o", folder);
+      // A file system without locks (some network ones) runs unguarded, as it always did.
+    }
+  }
+
+ private:
+  int fd_ = -1;
+};
+}  // namespace
+
 struct Simulation::Impl {
+  FolderLock lock;
   scene::Scene scene;
   RunOptions options;
   Setup setup;
@@ -270,6 +302,7 @@ RunSummary Simulation::run() {
   std::error_code ec;
   fs::create_directories(frames_dir, ec);
   if (ec) fail_run("{}: cannot create the folder: {}", frames_dir.string(), ec.message());
+  s.lock.lock(out.string());
   const int first_frame = s.resuming ? s.resume.frame + 1 : 0;
   remove_old_frames(frames_dir, first_frame);
   const std::string run_path = (out / "run.h5").string();

@@ -192,6 +192,27 @@ TEST(BwSim, WarnsOfASpeedOfSoundTheWaterOutruns) {
   expect_silent_run(run + dir.file("fine"));
 }
 
+// One bw-sim at a time writes to a folder: a second, started while the first runs, is
+// refused and touches nothing; the first goes on and stops cleanly.
+TEST(BwSim, ASecondRunIntoTheSameFolderIsRefused) {
+  test::TempDir dir;
+  write_small_dambreak(dir);
+  const std::string sim = bw_sim() + " " + dir.file("scene.toml") + " -q -o " + dir.file("out");
+  const std::string script = sim + " --end-time 30 & first=$!; " +
+                             "for i in $(seq 600); do [ -e " + dir.file("out/frames/000001.h5") +
+                             " ] && break; sleep 0.05; done; " +
+                             sim + " --end-time 0.05; echo second=$?; kill -TERM $first; wait $first; echo first=$?";
+  const auto r = test::run("bash -c '" + script + "'");
+  EXPECT_NE(r.out.find("second=2\n"), std::string::npos) << r.out << r.err;
+  EXPECT_NE(r.out.find("first=143\n"), std::string::npos) << r.out << r.err;  // stopped by SIGTERM, checkpointed
+  EXPECT_NE(r.err.find("bw-sim: " + dir.file("out") +
+                       ": another bw-sim is writing to this folder; wait for it, stop it, or give another -o\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(test::exists(dir.file("out/checkpoint.h5")));
+  EXPECT_TRUE(test::exists(dir.file("out/frames/000001.h5")));
+}
+
 TEST(BwSim, EndTimeOptionAndSummary) {
   test::TempDir dir;
   write_small_dambreak(dir);
