@@ -24,6 +24,9 @@ namespace {
 // one-line messages instead. Called before the first HDF5 call of every entry point.
 void quiet_hdf5() {
   static const bool done = [] {
+    // Every file is closed by its File. HDF5's own clean-up at exit would close again
+    // a file whose close failed (a full disk), which crashes in HDF5 1.10.
+    H5dont_atexit();
     H5open();
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     return true;
@@ -42,7 +45,20 @@ std::string hdf5_reason() {
       },
       &reason);
   H5Eclear2(H5E_DEFAULT);
-  return reason.empty() ? std::string("HDF5 error") : reason;
+  if (reason.empty()) return "HDF5 error";
+  // A failed system call comes as a report over several lines ("file write failed:
+  // time = ..., filename = ..., errno = 28, error message = 'No space left on
+  // device', ..."): its head and the system's words are what a user needs.
+  const std::string marker = "error message = '";
+  if (const auto at = reason.find(marker); at != std::string::npos) {
+    const auto from = at + marker.size();
+    const auto to = reason.find('\'', from);
+    const auto colon = reason.find(':');
+    reason = reason.substr(0, colon) + ": " + reason.substr(from, to == std::string::npos ? to : to - from);
+  }
+  for (char& c : reason)
+    if (c == '\n') c = ' ';
+  return reason;
 }
 
 template <class T>
@@ -614,7 +630,7 @@ File::~File() { close(); }
 
 void File::close() noexcept {
   root_ = Group();
-  if (file_.valid()) H5Fclose(file_.get());
+  if (file_.valid()) H5Fclose(file_.release());
   file_ = Id();
   target_.reset();  // removes an uncommitted temporary file
 }
@@ -630,14 +646,12 @@ void File::commit() {
     if (H5Fget_file_image(file_.get(), image.data(), image.size()) < 0) {
       fail_run("{}: cannot take the file image: {}", name_, hdf5_reason());
     }
-    H5Fclose(file_.get());
-    file_ = Id();
+    H5Fclose(file_.release());
     if (std::fwrite(image.data(), 1, image.size(), stdout) != image.size() || std::fflush(stdout) != 0) {
       fail_run("<stdout>: write failed: {}", std::strerror(errno));
     }
   } else {
-    const herr_t closed = H5Fclose(file_.get());
-    file_ = Id();
+    const herr_t closed = H5Fclose(file_.release());
     if (closed < 0) fail_run("{}: closing failed: {}", name_, hdf5_reason());
     target_->commit();
     target_.reset();

@@ -64,6 +64,14 @@ class Id {
   Id& operator=(Id&& other) noexcept;
   std::int64_t get() const { return id_; }
   bool valid() const;
+  // Gives up the reference without releasing it, for a call that does (H5Fclose): a
+  // failed close (a full disk) may leave the id registered, and releasing it again
+  // would run HDF5's close a second time on a broken file.
+  std::int64_t release() {
+    const std::int64_t id = id_;
+    id_ = -1;
+    return id;
+  }
 
  private:
   std::int64_t id_ = -1;

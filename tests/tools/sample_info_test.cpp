@@ -51,6 +51,21 @@ TEST(BwSample, SamplesAndDescribesThroughAPipe) {
   EXPECT_EQ(solid.voxels.size(), 512u);
 }
 
+// A file system that takes no more ends a tool with one line and exit 1: no crash, no
+// temporary file. A file size limit stands in for a full disk (it needs no root; the
+// write fails with EFBIG where a full disk gives ENOSPC). HDF5's clean-up at exit
+// crashed here, closing again a file whose close had failed.
+TEST(BwSample, AFullDiskIsOneLineAndLeavesNothing) {
+  TempDir dir;
+  bw::mesh::export_mesh(bw::mesh::box({0, 0, 0}, {1, 1, 1}), dir.file("cube.obj"));
+  const auto r = run("bash -c 'ulimit -f 100; trap \"\" XFSZ; exec " + kSample + " " + dir.file("cube.obj") +
+                     " --spacing 0.02 --volume -o " + dir.file("out.h5") + "'");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(bw::test::line_count(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
+  EXPECT_EQ(bw::test::list_folder(dir.path()), "cube.obj");
+}
+
 // Process substitution hands a tool a pipe by name (/dev/fd/N), which HDF5 and assimp
 // cannot seek in: the tools read it through a temporary copy, which they remove.
 TEST(BwSample, ReadsMeshesAndParticleFilesFromPipesByName) {
