@@ -1,5 +1,6 @@
 #include "common/atomic_file.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -51,21 +52,10 @@ Target target_of(const std::string& path) {
 
 // Copies the finished file into a device or a pipe, which a rename would replace.
 void copy_bytes(const std::string& from, const std::string& to, const std::string& name) {
-  std::FILE* in = std::fopen(from.c_str(), "rb");
-  if (!in) fail_run("{}: cannot read the finished file back: {}", name, std::strerror(errno));
-  std::FILE* out = std::fopen(to.c_str(), "wb");
-  if (!out) {
-    const int err = errno;
-    std::fclose(in);
-    fail_run("{}: cannot write: {}", name, std::strerror(err));
-  }
-  std::vector<char> buffer(1 << 20);
-  int err = 0;
-  for (std::size_t n; err == 0 && (n = std::fread(buffer.data(), 1, buffer.size(), in)) > 0;)
-    if (std::fwrite(buffer.data(), 1, n, out) != n) err = errno ? errno : EIO;
-  if (err == 0 && std::ferror(in)) err = errno ? errno : EIO;
-  std::fclose(in);
-  if (std::fclose(out) != 0 && err == 0) err = errno ? errno : EIO;
+  const int fd = ::open(to.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+  if (fd < 0) fail_run("{}: cannot write: {}", name, std::strerror(errno));
+  int err = copy_file_into(from, fd);
+  if (::close(fd) != 0 && err == 0) err = errno;
   if (err) fail_run("{}: write failed: {}", name, std::strerror(err));
 }
 
@@ -164,6 +154,23 @@ void AtomicFile::discard() noexcept {
     forget_temp_file(ticket_);
     ticket_ = -1;
   }
+}
+
+int copy_file_into(const std::string& from, int fd) {
+  std::FILE* in = std::fopen(from.c_str(), "rb");
+  if (!in) return errno ? errno : EIO;
+  std::vector<char> buffer(1 << 20);
+  int err = 0;
+  for (std::size_t n; err == 0 && (n = std::fread(buffer.data(), 1, buffer.size(), in)) > 0;) {
+    for (std::size_t done = 0; done < n && err == 0;) {
+      const ssize_t w = ::write(fd, buffer.data() + done, n - done);
+      if (w < 0 && errno != EINTR) err = errno;
+      if (w > 0) done += static_cast<std::size_t>(w);
+    }
+  }
+  if (err == 0 && std::ferror(in)) err = errno ? errno : EIO;
+  std::fclose(in);
+  return err;
 }
 
 void write_file_atomically(const std::string& path, const void* bytes, std::size_t size) {

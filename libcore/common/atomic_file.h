@@ -45,6 +45,10 @@ class AtomicFile {
   int ticket_ = -1;          // the temporary file's, for removal on a signal (temp_files.h)
 };
 
+// Copies the whole of the file `from` (a pipe too) into the open file `fd`; returns 0
+// or the errno of the failure.
+int copy_file_into(const std::string& from, int fd);
+
 // Writes `bytes` to `path` through an AtomicFile.
 void write_file_atomically(const std::string& path, const void* bytes, std::size_t size);
 

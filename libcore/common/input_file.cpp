@@ -3,38 +3,19 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <map>
 #include <mutex>
-#include <vector>
 
+#include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/temp_files.h"
 
 namespace bw {
 namespace fs = std::filesystem;
 namespace {
-
-// Writes the whole of `from` (a pipe) into the open file `fd`; 0 or an errno.
-int copy_into(const std::string& from, int fd) {
-  std::FILE* in = std::fopen(from.c_str(), "rb");
-  if (!in) return errno ? errno : EIO;
-  std::vector<char> buffer(1 << 20);
-  int err = 0;
-  for (std::size_t n; err == 0 && (n = std::fread(buffer.data(), 1, buffer.size(), in)) > 0;) {
-    for (std::size_t done = 0; done < n && err == 0;) {
-      const ssize_t w = ::write(fd, buffer.data() + done, n - done);
-      if (w < 0 && errno != EINTR) err = errno;
-      if (w > 0) done += static_cast<std::size_t>(w);
-    }
-  }
-  if (err == 0 && std::ferror(in)) err = errno ? errno : EIO;
-  std::fclose(in);
-  return err;
-}
 
 // The copies made so far, by the path they were read from; removed at exit, or by a
 // signal (common/temp_files.h). HDF5 opens files by a name it resolves, so a copy
@@ -58,7 +39,7 @@ class Spool {
                  std::strerror(errno));
     remember_temp_file(name);
     copies_[path] = name;
-    const int err = copy_into(path, fd);
+    const int err = copy_file_into(path, fd);
     ::close(fd);
     if (err) {
       std::error_code ec;

@@ -10,10 +10,12 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <map>
 
 #include "common/error.h"
 #include "common/input_file.h"
 #include "common/terminal.h"
+#include "io/frame_range.h"
 
 static_assert(std::is_same_v<hid_t, std::int64_t>, "h5.h stores hid_t as int64_t");
 
@@ -498,14 +500,8 @@ std::string folder_hint(const std::string& folder) {
   std::error_code ec;
   const fs::path run = fs::path(folder) / "run.h5";
   if (fs::is_regular_file(run, ec)) return fmt::format(" (a bw-sim output folder; its run file is {})", run.string());
-  std::string first;
-  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (name.size() == 9 && name.ends_with(".h5") && name.find_first_not_of("0123456789") == 6 &&
-        (first.empty() || name < fs::path(first).filename().string()))
-      first = it->path().string();
-  }
-  return first.empty() ? std::string() : fmt::format(" (a folder of frames, such as {})", first);
+  const std::map<int, std::string> frames = frame_files(folder);
+  return frames.empty() ? std::string() : fmt::format(" (a folder of frames, such as {})", frames.begin()->second);
 }
 
 }  // namespace
