@@ -52,22 +52,31 @@ class TableReader {
     };
   }
   void vec3(const std::string& key, Vec3d& out) {
-    handlers_[key] = [this, key, &out](const toml::node& n) {
-      const toml::array* a = n.as_array();
-      if (!a || a->size() != 3) fail(key, "expected an array of 3 numbers");
-      for (std::size_t i = 0; i < 3; ++i) {
-        const toml::node& e = *a->get(i);
-        if (!e.is_number()) fail(key, "expected an array of 3 numbers");
-        out[static_cast<int>(i)] = e.value<double>().value();
-        if (!std::isfinite(out[static_cast<int>(i)])) fail(key, "expected finite numbers");
-      }
-    };
+    handlers_[key] = [this, key, &out](const toml::node& n) { out = vec3_of(key, n); };
   }
+  void optional_vec3(const std::string& key, std::optional<Vec3d>& out) {
+    handlers_[key] = [this, key, &out](const toml::node& n) { out = vec3_of(key, n); };
+  }
+  // A key whose value is read by the caller (an array of tables).
+  void node(const std::string& key, std::function<void(const toml::node&)> read) { handlers_[key] = std::move(read); }
   void text(const std::string& key, std::function<void(const std::string&)> parse) {
     handlers_[key] = [this, key, parse](const toml::node& n) {
       if (!n.is_string()) fail(key, "expected a string");
       parse(n.value<std::string>().value());
     };
+  }
+
+  Vec3d vec3_of(const std::string& key, const toml::node& n) const {
+    const toml::array* a = n.as_array();
+    if (!a || a->size() != 3) fail(key, "expected an array of 3 numbers");
+    Vec3d out;
+    for (std::size_t i = 0; i < 3; ++i) {
+      const toml::node& e = *a->get(i);
+      if (!e.is_number()) fail(key, "expected an array of 3 numbers");
+      out[static_cast<int>(i)] = e.value<double>().value();
+      if (!std::isfinite(out[static_cast<int>(i)])) fail(key, "expected finite numbers");
+    }
+    return out;
   }
 
   void read() const {
@@ -90,6 +99,91 @@ void check(bool ok, const std::string& where, const char* key, const std::string
 }
 
 bool unit_color(const Vec3d& c) { return (c.array() >= 0).all() && (c.array() <= 1).all(); }
+
+// What one [[camera.key]] gives; the rest comes from [camera] itself.
+struct KeyValues {
+  std::optional<double> time, fov;
+  std::optional<Vec3d> position, target, up;
+};
+
+// [camera]: one camera, or keys over time ([[camera.key]]) whose missing values are
+// the table's own.
+CameraPath read_camera(const toml::table& t, const std::string& name) {
+  KeyValues base;
+  std::vector<KeyValues> keys;
+  std::string interpolation = "smooth";
+  TableReader r(t, name, "camera");
+  r.optional_vec3("position", base.position);
+  r.optional_vec3("target", base.target);
+  r.optional_vec3("up", base.up);
+  r.optional_number("fov", base.fov);
+  r.text("interpolation", [&](const std::string& v) {
+    if (!parse_camera_interpolation(v)) r.fail("interpolation", fmt::format("'{}' is not one of smooth, linear", v));
+    interpolation = v;
+  });
+  r.node("key", [&](const toml::node& n) {
+    const toml::array* a = n.as_array();
+    if (!a || !a->is_array_of_tables() || a->empty())
+      r.fail("key", "expected an array of tables, each [[camera.key]] with a time");
+    keys.resize(a->size());
+    for (std::size_t k = 0; k < a->size(); ++k) {
+      TableReader key(*a->get(k)->as_table(), name, fmt::format("camera.key[{}]", k));
+      key.optional_number("time", keys[k].time);
+      key.optional_vec3("position", keys[k].position);
+      key.optional_vec3("target", keys[k].target);
+      key.optional_vec3("up", keys[k].up);
+      key.optional_number("fov", keys[k].fov);
+      key.read();
+    }
+  });
+  r.read();
+  if (keys.empty()) {
+    if (!base.position || !base.target)
+      fail_input("{}: camera.{}: required when a [camera] table is given", name, base.position ? "target" : "position");
+    keys.push_back(base);
+    keys.back().time = 0;
+  }
+  std::vector<CameraKey> path;
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    const KeyValues& v = keys[k];
+    const std::string key = fmt::format("camera.key[{}]", k);
+    if (!v.time) fail_input("{}: {}.time: required (the simulation time of the key, s)", name, key);
+    if (k > 0 && !(*v.time > *keys[k - 1].time))
+      fail_input("{}: {}.time: {} is not after camera.key[{}].time = {}", name, key, *v.time, k - 1, *keys[k - 1].time);
+    if (!v.position && !base.position)
+      fail_input("{}: {}.position: required in every key when [camera] has no position", name, key);
+    if (!v.target && !base.target)
+      fail_input("{}: {}.target: required in every key when [camera] has no target", name, key);
+    Camera c;
+    c.position = v.position.value_or(base.position.value_or(Vec3d::Zero()));
+    c.target = v.target.value_or(base.target.value_or(Vec3d::Zero()));
+    c.up = v.up.value_or(base.up.value_or(c.up));
+    c.fov_degrees = v.fov.value_or(base.fov.value_or(c.fov_degrees));
+    if (const std::string problem = camera_problem(c); !problem.empty())
+      fail_input("{}: {}.{}", name, t.contains("key") ? key : std::string("camera"), problem);
+    path.push_back({*v.time, c});
+  }
+  return CameraPath(std::move(path), *parse_camera_interpolation(interpolation));
+}
+
+// Every key, and the cameras between them: the path must be drawable throughout (the
+// frames' times are not known here; bw-render checks each frame's camera again).
+void check_camera_path(const CameraPath& path, const std::string& where) {
+  const auto& keys = path.keys();
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    const std::string problem = camera_problem(keys[k].camera);
+    if (!problem.empty())
+      fail_input("{}: {}.{}", where, path.animated() ? fmt::format("camera.key[{}]", k) : "camera", problem);
+  }
+  constexpr int kSamples = 64;
+  for (std::size_t k = 0; k + 1 < keys.size(); ++k)
+    for (int i = 1; i < kSamples; ++i) {
+      const double t = keys[k].time + (keys[k + 1].time - keys[k].time) * i / kSamples;
+      const std::string problem = camera_problem(path.at(t));
+      if (!problem.empty())
+        fail_input("{}: camera.key[{}] to camera.key[{}]: at t = {:.6g} s, {}", where, k, k + 1, t, problem);
+    }
+}
 
 }  // namespace
 
@@ -125,15 +219,7 @@ void RenderSettings::validate(const std::string& where) const {
   check(width >= 1 && width <= kMaxImageSide, where, "render.width", fmt::format("{} is outside [1, {}]", width, kMaxImageSide));
   check(height >= 1 && height <= kMaxImageSide, where, "render.height",
         fmt::format("{} is outside [1, {}]", height, kMaxImageSide));
-  if (camera) {
-    const Camera& c = *camera;
-    check(c.fov_degrees > 0 && c.fov_degrees < 180, where, "camera.fov",
-          fmt::format("{} is outside (0, 180) degrees", c.fov_degrees));
-    check((c.target - c.position).norm() > 0, where, "camera.target", "equals camera.position");
-    check(c.up.norm() > 0, where, "camera.up", "is the zero vector");
-    check(c.up.normalized().cross((c.target - c.position).normalized()).norm() > 1e-6, where, "camera.up",
-          "is parallel to the viewing direction");
-  }
+  if (camera) check_camera_path(*camera, where);
   check(light.direction.norm() > 0, where, "light.direction", "is the zero vector");
   check(unit_color(light.color), where, "light.color", "components must lie in [0, 1]");
   check(light.intensity >= 0, where, "light.intensity", "must be >= 0");
@@ -178,21 +264,7 @@ RenderSettings parse_render_settings(const std::string& toml_text, const std::st
     return n->as_table();
   };
 
-  if (const toml::table* t = table("camera")) {
-    Camera c;
-    TableReader r(*t, name, "camera");
-    bool has_position = false, has_target = false;
-    r.vec3("position", c.position);
-    r.vec3("target", c.target);
-    r.vec3("up", c.up);
-    r.number("fov", c.fov_degrees);
-    r.read();
-    has_position = t->contains("position");
-    has_target = t->contains("target");
-    if (!has_position || !has_target)
-      fail_input("{}: camera.{}: required when a [camera] table is given", name, has_position ? "target" : "position");
-    s.camera = c;
-  }
+  if (const toml::table* t = table("camera")) s.camera = read_camera(*t, name);
   if (const toml::table* t = table("light")) {
     TableReader r(*t, name, "light");
     r.vec3("direction", s.light.direction);

@@ -13,15 +13,9 @@
 #include <string>
 
 #include "common/geometry.h"
+#include "render/camera_path.h"
 
 namespace bw::render {
-
-struct Camera {
-  Vec3d position = Vec3d(0, -4, 1.5);
-  Vec3d target = Vec3d(0, 0, 0.5);
-  Vec3d up = Vec3d(0, 0, 1);
-  double fov_degrees = 45;   // vertical field of view
-};
 
 struct Light {
   // Direction in which the sun's light travels (from the sun into the scene).
@@ -47,8 +41,9 @@ struct RenderSettings {
   int width = 1280;
   int height = 720;
 
-  // The camera; empty means "frame the scene" (see fit_camera in camera.h).
-  std::optional<Camera> camera;
+  // The camera, fixed or moving over time; empty means "frame the scene" (see
+  // fit_camera in camera.h).
+  std::optional<CameraPath> camera;
   Light light;
 
   // Particles are drawn as spheres of this radius (m). 0: particle_radius_factor

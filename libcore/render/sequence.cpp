@@ -71,7 +71,7 @@ Camera parse_camera(const std::string& text) {
     c.fov_degrees = f[0];
   }
   RenderSettings check;
-  check.camera = c;
+  check.camera = CameraPath::fixed(c);
   check.validate("--camera");
   return c;
 }
@@ -183,7 +183,8 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
   // checked for how much of it it sees.
   const Occluders occluders(reference_solids);
   if (settings.camera) {
-    report.camera = *settings.camera;
+    report.camera = settings.camera->at(reference.time);
+    report.camera_keys = settings.camera->keys().size();
   } else {
     ViewFitInput fit;
     fit.solids = solid_box;
@@ -202,6 +203,15 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
   report.reference_water = water.size();
   report.water_seen = fraction_seen(report.camera, aspect, water, &occluders);
 
+  // A moving camera is checked at every frame's time before anything is drawn.
+  std::vector<Camera> frame_cameras(plan.frames.size(), report.camera);
+  if (settings.camera && settings.camera->animated())
+    for (std::size_t i = 0; i < plan.frames.size(); ++i) {
+      frame_cameras[i] = settings.camera->at(plan.frames[i].time);
+      if (const std::string problem = camera_problem(frame_cameras[i]); !problem.empty())
+        fail_input("{}: the camera at t = {:.6g} s: {}", plan.frames[i].path, plan.frames[i].time, problem);
+    }
+
   std::unique_ptr<GlContext> context = GlContext::create(job.device);
   report.renderer = context->renderer();
   report.display = context->display();
@@ -210,14 +220,15 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
   if (!job.video_path.empty()) video = std::make_unique<VideoWriter>(job.video_path, plan.fps);
 
   // What the images were made with, stored in each PNG (a frame can be remade).
-  const Camera& c = report.camera;
-  const std::string settings_text = fmt::format(
-      "camera {:.6g},{:.6g},{:.6g}:{:.6g},{:.6g},{:.6g}:{:.6g} up {:.6g},{:.6g},{:.6g}; particle radius {:.6g} m "
-      "(spacing {:.6g} m); ground {:.6g} m; filter {}; light {:.6g},{:.6g},{:.6g}; {} x {}",
-      c.position.x(), c.position.y(), c.position.z(), c.target.x(), c.target.y(), c.target.z(), c.fov_degrees,
-      c.up.x(), c.up.y(), c.up.z(), radius, spacing, report.ground_height, filter_name(settings.filter),
-      settings.light.direction.x(), settings.light.direction.y(), settings.light.direction.z(), settings.width,
-      settings.height);
+  const auto settings_text = [&](const Camera& c) {
+    return fmt::format(
+        "camera {:.6g},{:.6g},{:.6g}:{:.6g},{:.6g},{:.6g}:{:.6g} up {:.6g},{:.6g},{:.6g}; particle radius {:.6g} m "
+        "(spacing {:.6g} m); ground {:.6g} m; filter {}; light {:.6g},{:.6g},{:.6g}; {} x {}",
+        c.position.x(), c.position.y(), c.position.z(), c.target.x(), c.target.y(), c.target.z(), c.fov_degrees,
+        c.up.x(), c.up.y(), c.up.z(), radius, spacing, report.ground_height, filter_name(settings.filter),
+        settings.light.direction.x(), settings.light.direction.y(), settings.light.direction.z(), settings.width,
+        settings.height);
+  };
   double render_seconds = 0;
   for (std::size_t i = 0; i < plan.frames.size(); ++i) {
     const FramePlan& f = plan.frames[i];
@@ -231,14 +242,14 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
     input.x = frame.x.data(), input.y = frame.y.data(), input.z = frame.z.data();
     input.count = frame.fluid_count();
     input.solids = &soup;
-    input.camera = report.camera;
+    input.camera = frame_cameras[i];
     input.particle_radius = radius;
     input.particle_spacing = spacing;
     input.ground_height = report.ground_height;
     const Image image = renderer.render(input);
     const std::vector<std::uint8_t> png = encode_png(image, {{"Software", "bw-render " BW_VERSION},
                                                              {"Title", fmt::format("frame {}, t = {:.6g} s", f.number, f.time)},
-                                                             {"Comment", settings_text}});
+                                                             {"Comment", settings_text(input.camera)}});
     write_file_atomically(fmt::format("{}/{:06d}.png", job.output_dir, f.number), png.data(), png.size());
     if (video) video->add_png(png);
     render_seconds += frame_clock.seconds();

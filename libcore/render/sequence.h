@@ -74,7 +74,8 @@ struct SequenceReport {
   double render_ms_per_frame = 0;  // reading, drawing and writing one frame
   std::string renderer, display;   // GL_RENDERER; how the EGL display was found
   std::string reference_frame;     // the frame that fixed particle size, ground, camera
-  Camera camera;
+  Camera camera;                   // at the reference frame's time
+  std::size_t camera_keys = 0;     // keys of a given camera (1: fixed); 0: fitted
   bool camera_fitted = false;
   // A fitted camera's direction (degrees) and the fractions of the probes on the
   // water's surface and on the floor around it that it sees (view_fit.h; -1: none).

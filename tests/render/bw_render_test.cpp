@@ -161,6 +161,36 @@ TEST(BwRender, SceneTablesAndCommandLine) {
   EXPECT_NE(r.err.find("camera       1,-3,1:0,0,0.5:30\n"), std::string::npos) << r.err;
 }
 
+// A camera with keys moves with the frames' times; each PNG records its own camera,
+// and a part of the sequence renders its frames as the whole does.
+TEST(BwRender, ACameraWithKeysMovesWithTheFramesTimes) {
+  bw::test::TempDir dir;
+  write_run(dir, {0, 1, 2, 3});  // t = n / 30 s
+  std::ofstream(dir.file("scene.toml")) << "[camera]\ntarget = [0, 0, 0.5]\ninterpolation = \"linear\"\n"
+                                           "[[camera.key]]\ntime = 0\nposition = [0, -3, 1]\n"
+                                           "[[camera.key]]\ntime = 0.1\nposition = [3, 0, 1]\nfov = 30\n";
+  const std::string scene = " --scene " + dir.file("scene.toml") + kSmall;
+  const auto all = run(kTool + " " + dir.file("frames") + " -o " + dir.file("all") + scene + " -v");
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  EXPECT_NE(all.err.find("moving       2 keys from t = 0 to 0.1 s, linear"), std::string::npos) << all.err;
+  EXPECT_NE(slurp(dir.file("all/000000.png")).find("camera 0,-3,1:0,0,0.5:45 "), std::string::npos);
+  EXPECT_NE(slurp(dir.file("all/000001.png")).find("camera 1,-2,1:0,0,0.5:40 "), std::string::npos);
+  EXPECT_NE(slurp(dir.file("all/000003.png")).find("camera 3,0,1:0,0,0.5:30 "), std::string::npos);
+  const auto part = run(kTool + " " + dir.file("frames") + " -o " + dir.file("part") + " --frames 2" + scene);
+  ASSERT_EQ(part.exit_code, 0) << part.err;
+  EXPECT_EQ(slurp(dir.file("all/000002.png")), slurp(dir.file("part/000002.png")));
+
+  // Looking straight down along up at frame 2's time only (t = 1/15 s, between the
+  // points where the scene's check samples the path): refused before any drawing.
+  std::ofstream(dir.file("down.toml")) << "[camera]\ntarget = [0, 0, 0.5]\ninterpolation = \"linear\"\n"
+                                          "[[camera.key]]\ntime = 0\nposition = [-2, 0, 1.5]\n"
+                                          "[[camera.key]]\ntime = 0.1\nposition = [1, 0, 1.5]\n";
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("down") + " --scene " +
+                            dir.file("down.toml") + kSmall),
+                        2, "000002.h5: the camera at t = 0.0666667 s: up: is parallel to the viewing direction");
+  EXPECT_TRUE(nothing_in(dir.file("down")));
+}
+
 // Without --scene, the look is that of the scene the run was made with (the run file
 // keeps its text); --scene replaces it, --no-scene leaves the defaults and a fitted camera.
 TEST(BwRender, RunsSceneTablesUnlessTold) {

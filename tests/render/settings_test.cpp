@@ -83,8 +83,9 @@ ground_height = -0.5
 )",
                                            "scene.toml");
   ASSERT_TRUE(s.camera);
-  EXPECT_EQ(s.camera->position, Vec3d(1, -3, 2));
-  EXPECT_EQ(s.camera->fov_degrees, 50);
+  EXPECT_FALSE(s.camera->animated());
+  EXPECT_EQ(s.camera->at(0).position, Vec3d(1, -3, 2));
+  EXPECT_EQ(s.camera->at(0).fov_degrees, 50);
   EXPECT_FALSE(s.light.shadows);
   EXPECT_EQ(s.width, 320);
   EXPECT_EQ(s.height, 200);

@@ -309,6 +309,9 @@ TEST(BwSim, BadInputsExitWithTwoAndWriteNothing) {
   // bw-render's tables are checked before the run, not after it.
   expect_bad_input(kGood + "[render]\nwidth = 0\n", "scene.toml: render.width: 0 is outside [1, 16384]");
   expect_bad_input(kGood + "[camera]\nzoom = 2\n", "scene.toml: camera.zoom: unknown key");
+  expect_bad_input(kGood + "[camera]\ntarget = [0, 0, 0]\n[[camera.key]]\ntime = 0.2\nposition = [0, -1, 1]\n"
+                           "[[camera.key]]\ntime = 0.1\nposition = [1, -1, 1]\n",
+                   "scene.toml: camera.key[1].time: 0.1 is not after camera.key[0].time = 0.2");
   expect_bad_input(kGood, "scene.toml: light.intensity: must be >= 0", "--set light.intensity=-1");
   expect_bad_input(kGood, "--device: 'fastest'", "--device fastest");
   expect_bad_input(kGood, "--device 99", "--device 99");

@@ -54,7 +54,7 @@ struct Options {
     }
     if (width) j.settings.width = *width;
     if (height) j.settings.height = *height;
-    if (!camera.empty()) j.settings.camera = bw::render::parse_camera(camera);
+    if (!camera.empty()) j.settings.camera = bw::render::CameraPath::fixed(bw::render::parse_camera(camera));
     if (!filter.empty()) j.settings.filter = *bw::render::parse_filter(filter);
     j.settings.view = *bw::render::parse_view(view);
     if (radius > 0) j.settings.particle_radius = radius;
@@ -75,8 +75,9 @@ void print_summary(const Options& o, const bw::render::SequenceJob& job, const s
                  r.bodies_without_mesh);
   if (r.reference_water > 0 && r.water_seen == 0)
     std::fprintf(stderr,
-                 "  note         the camera sees none of the water of the reference frame: solids hide it or it is "
-                 "out of view\n");
+                 "  note         the camera%s sees none of the water of the reference frame: solids hide it or it is "
+                 "out of view\n",
+                 r.camera_keys > 1 ? " at the reference frame's time" : "");
   if (!o.verbose) return;
   const auto& s = job.settings;
   const auto& c = r.camera;
@@ -84,7 +85,13 @@ void print_summary(const Options& o, const bw::render::SequenceJob& job, const s
   std::fprintf(stderr, "  look         %s\n", look.c_str());
   std::fprintf(stderr, "  image        %d x %d, filter %s\n", s.width, s.height, bw::render::filter_name(s.filter));
   std::fprintf(stderr, "  camera       %g,%g,%g:%g,%g,%g:%g%s\n", c.position.x(), c.position.y(), c.position.z(),
-               c.target.x(), c.target.y(), c.target.z(), c.fov_degrees, r.camera_fitted ? " (fitted)" : "");
+               c.target.x(), c.target.y(), c.target.z(), c.fov_degrees,
+               r.camera_fitted ? " (fitted)" : r.camera_keys > 1 ? " (at the reference frame)" : "");
+  if (s.camera && s.camera->animated()) {
+    const auto& keys = s.camera->keys();
+    std::fprintf(stderr, "  moving       %zu keys from t = %g to %g s, %s\n", keys.size(), keys.front().time,
+                 keys.back().time, bw::render::camera_interpolation_name(s.camera->interpolation()));
+  }
   if (r.camera_fitted) {
     std::string seen;
     if (r.fit_surface_seen >= 0) seen += fmt::format(", sees {:.0f}% of the water's surface", 100 * r.fit_surface_seen);
