@@ -247,6 +247,32 @@ void check_overlaps(const scene::Scene& s, const Setup& out, const std::vector<B
   }
 }
 
+// Fluid may not start inside a static solid sampled with its volume (whose voxels
+// say it is solid there; without voxels either side of the surface may hold water, as
+// a tank sampled from a box's faces). A block or an emitter deep inside is never near
+// the solid's boundary particles, so no compression shows it: the fluid would sit or
+// fall inside the wall. A block is tested at its centre (one that reaches out of the
+// solid crosses its surface, which the initial compression refuses), an emitter at
+// each point of its layer; the cells the surface crosses do not count.
+void check_fluid_outside(const scene::Scene& s, const Setup& out, std::size_t solid, const BodyGeometry& g) {
+  const scene::Solid& placement = s.solids[solid];
+  for (std::size_t b = 0; b < s.blocks.size(); ++b) {
+    const Vec3d centre = 0.5 * (s.blocks[b].min + s.blocks[b].max);
+    if (g.contains(centre))
+      fail_input("{}: fluid.block[{}]: lies inside solid[{}] ('{}'): its centre {} is among the solid's voxels",
+                 s.path, b, solid, placement.name, point_text(centre));
+  }
+  for (std::size_t e = 0; e < out.emitters.size(); ++e) {
+    const std::vector<Vec3d>& points = out.emitters[e].points;
+    const auto inside = std::count_if(points.begin(), points.end(), [&](const Vec3d& x) { return g.contains(x); });
+    if (inside > 0)
+      fail_input("{}: fluid.emitter[{}]: {} of its {} points lie inside solid[{}] ('{}'), the first at {}: an "
+                 "emitter's water must start in open space",
+                 s.path, e, inside, points.size(), solid, placement.name,
+                 point_text(*std::find_if(points.begin(), points.end(), [&](const Vec3d& x) { return g.contains(x); })));
+  }
+}
+
 // A particles file from before bw-sample recorded its surface rule (docs/formats.md,
 // "particles") may lack the rows behind concave edges: its cells are compared with
 // those bw-sample marks now from the same mesh and grid, and a difference is said,
@@ -667,6 +693,10 @@ Setup prepare(const scene::Scene& s, double end_time) {
       out.bodies.push_back(std::move(body));
       bset.per_solid.push_back(0);
       continue;
+    }
+    if (sampled.has_voxels && !sampled.voxels.empty()) {
+      g.set_interior(sampled, solid);
+      check_fluid_outside(s, out, i, g);
     }
     std::size_t kept = 0;
     for (std::size_t k = 0; k < positions.size(); ++k) {

@@ -22,8 +22,8 @@ void write_thick_tank(const std::string& path, const Eigen::Vector3i& n, double 
   write_particles(solid, path, "sim test");
 }
 
-void write_block(const std::string& path, const Vec3d& lo, const Vec3d& hi, double spacing) {
-  SampledSolid solid = sample::sample_mesh(mesh::box(lo, hi), {spacing, false, "block", 1.0});
+void write_block(const std::string& path, const Vec3d& lo, const Vec3d& hi, double spacing, bool volume) {
+  SampledSolid solid = sample::sample_mesh(mesh::box(lo, hi), {spacing, volume, "block", 1.0});
   write_particles(solid, path, "sim test");
 }
 

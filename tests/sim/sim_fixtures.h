@@ -25,8 +25,9 @@ void write_tank(const std::string& path, const Eigen::Vector3i& n, double spacin
 void write_thick_tank(const std::string& path, const Eigen::Vector3i& n, double spacing, double thickness);
 
 // A solid block [lo, hi] sampled at `spacing` (its surface, as bw-sample samples a
-// mesh) into `path`: a floor slab or a wall of a tank built of separate solids.
-void write_block(const std::string& path, const Vec3d& lo, const Vec3d& hi, double spacing);
+// mesh) into `path`: a floor slab or a wall of a tank built of separate solids; with
+// `volume`, its voxels too (bw-sample --volume: solid inside).
+void write_block(const std::string& path, const Vec3d& lo, const Vec3d& hi, double spacing, bool volume = false);
 
 // Outer size of that tank.
 Vec3d tank_size(const Eigen::Vector3i& n, double spacing);

@@ -291,6 +291,46 @@ TEST(BwSim, RefusesAKernelWiderThanItsWalls) {
   EXPECT_NE(overlap.err.find("a fluid block overlaps a solid"), std::string::npos) << overlap.err;
 }
 
+// A solid sampled with its volume is solid inside: fluid may not start there, where
+// no boundary particle is near enough to compress it. Beside it, or from a nozzle
+// flush with its face, it may; and without voxels a closed box may hold water.
+TEST(BwSim, RefusesFluidThatStartsInsideASolidsVolume) {
+  test::TempDir dir;
+  test::write_block(dir.file("wall.h5"), Vec3d(0.1, 0, 0), Vec3d(0.2, 0.1, 0.1), 0.01, true);
+  test::write_block(dir.file("box.h5"), Vec3d(0.1, 0, 0), Vec3d(0.2, 0.1, 0.1), 0.01, false);
+  const auto scene = [&](const std::string& solid, const std::string& block, const std::string& emitter) {
+    std::ofstream(dir.file("scene.toml"))
+        << "spacing = 0.01\n[time]\nend = 0.02\nframe_rate = 100\n[domain]\nmin = [-0.05, -0.05, -0.05]\nmax = [0.3, 0.15, 0.15]\n"
+        << "[[fluid.block]]\n" << block << "\n[[fluid.emitter]]\nshape = \"disc\"\nradius = 0.01\nspeed = 1\n" << emitter
+        << "\n[[solid]]\nparticles = \"" << solid << "\"\nname = \"wall\"\n";
+    return test::run(bw_sim() + " " + dir.file("scene.toml") + " -o " + dir.file("out"));
+  };
+  const std::string beside = "min = [0, 0, 0]\nmax = [0.06, 0.06, 0.06]";
+  const std::string within = "min = [0.13, 0.03, 0.03]\nmax = [0.17, 0.07, 0.07]";
+  const std::string flush = "center = [0.2, 0.05, 0.05]\nnormal = [1, 0, 0]";
+  const std::string buried = "center = [0.15, 0.05, 0.05]\nnormal = [1, 0, 0]";
+
+  auto r = scene("wall.h5", within, flush);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(test::line_count(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("fluid.block[0]: lies inside solid[0] ('wall'): its centre (0.15, 0.05, 0.05) m is among the "
+                       "solid's voxels"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(test::exists(dir.file("out")));
+  r = scene("wall.h5", beside, buried);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("fluid.emitter[0]: 5 of its 5 points lie inside solid[0] ('wall'), the first at ("),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(test::exists(dir.file("out")));
+  r = scene("wall.h5", beside, flush);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  fs::remove_all(dir.file("out"));
+  r = scene("box.h5", within, buried);  // a closed box without voxels: water inside it
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
 TEST(BwSim, BadInputsExitWithTwoAndWriteNothing) {
   expect_bad_input("colour = 1\n" + kGood, "scene.toml: colour: unknown key");
   expect_bad_input("spacing = -0.01\n" + kGood.substr(kGood.find('\n') + 1), "spacing: -0.01 must be positive");
