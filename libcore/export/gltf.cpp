@@ -108,6 +108,18 @@ std::array<double, 4> to_gltf(const Eigen::Quaterniond& q) {
   return {v.x(), v.y(), v.z(), n.w()};
 }
 
+std::array<double, 4> gltf_camera_rotation(const render::Camera& camera) {
+  const Vec3d forward = (camera.target - camera.position).normalized();
+  const Vec3d right = forward.cross(camera.up).normalized();
+  const Vec3d up = right.cross(forward);
+  Mat3d axes;
+  axes.col(0) = to_gltf(right);
+  axes.col(1) = to_gltf(up);
+  axes.col(2) = -to_gltf(forward);
+  const Eigen::Quaterniond q(axes);
+  return {q.x(), q.y(), q.z(), q.w()};
+}
+
 SolidSet SolidSet::load(const std::string& run_path, const std::string& fragments_path) {
   SolidSet set;
   set.run_path = run_path;
@@ -136,7 +148,7 @@ SolidSet SolidSet::load(const std::string& run_path, const std::string& fragment
 }
 
 std::vector<std::uint8_t> build_glb(const SolidSet& solids, const std::vector<PoseFrame>& frames,
-                                    const std::string& source, GltfStats* stats_out) {
+                                    const std::string& source, GltfStats* stats_out, const GltfCamera* camera) {
   GltfStats stats;
   Buffer buffer;
   std::vector<std::string> meshes, nodes, channels, samplers;
@@ -269,6 +281,68 @@ std::vector<std::uint8_t> build_glb(const SolidSet& solids, const std::vector<Po
     ++stats.body_nodes;
   }
 
+  std::string cameras;
+  if (camera) {
+    // At each frame's time, as bw-render draws it; one key when it does not move.
+    std::vector<render::Camera> keys;
+    if (frames.empty() || !camera->path.animated()) keys.push_back(camera->path.at(frames.empty() ? 0 : frames.front().time));
+    else
+      for (const PoseFrame& f : frames) keys.push_back(camera->path.at(f.time));
+    // Clip planes that hold the solids and the targets from every key.
+    Aabb box;
+    for (const TriMesh& m : solids.solid_meshes)
+      for (const Vec3d& v : m.vertices) box.add(v);
+    for (const render::Camera& c : keys) box.add(c.target);
+    double farthest = 0;
+    for (const render::Camera& c : keys)
+      for (int corner = 0; corner < 8; ++corner) {
+        const Vec3d p((corner & 1 ? box.max : box.min).x(), (corner & 2 ? box.max : box.min).y(),
+                      (corner & 4 ? box.max : box.min).z());
+        farthest = std::max(farthest, (p - c.position).norm());
+      }
+    const double zfar = 2 * std::max(farthest, 1e-3), znear = zfar * 1e-4;
+    stats.camera = true;
+    stats.fov_first = stats.fov_least = stats.fov_most = keys.front().fov_degrees;
+    for (const render::Camera& c : keys) {
+      stats.fov_least = std::min(stats.fov_least, c.fov_degrees);
+      stats.fov_most = std::max(stats.fov_most, c.fov_degrees);
+    }
+    cameras = fmt::format(
+        "\"cameras\":[{{\"name\":\"camera\",\"type\":\"perspective\",\"perspective\":{{\"yfov\":{},\"aspectRatio\":{},"
+        "\"znear\":{},\"zfar\":{}}}}}],",
+        number(keys.front().fov_degrees * M_PI / 180), number(camera->aspect), number(znear), number(zfar));
+    const auto node = static_cast<int>(nodes.size());
+    if (keys.size() > 1) {
+      std::vector<float> translation, rotation;
+      std::array<double, 4> previous = gltf_camera_rotation(keys.front());
+      for (const render::Camera& c : keys) {
+        const Vec3d t = to_gltf(c.position);
+        std::array<double, 4> r = gltf_camera_rotation(c);
+        // Neighbouring keys in the same hemisphere: interpolation takes the short way.
+        if (r[0] * previous[0] + r[1] * previous[1] + r[2] * previous[2] + r[3] * previous[3] < 0)
+          for (double& v : r) v = -v;
+        previous = r;
+        for (int k = 0; k < 3; ++k) translation.push_back(static_cast<float>(t[k]));
+        for (double v : r) rotation.push_back(static_cast<float>(v));
+      }
+      for (auto [values, type, components, path] :
+           {std::tuple{&translation, "VEC3", 3, "translation"}, std::tuple{&rotation, "VEC4", 4, "rotation"}}) {
+        const int output = buffer.add_floats(*values, type, components, false);
+        samplers.push_back(fmt::format("{{\"input\":{},\"output\":{},\"interpolation\":\"LINEAR\"}}", times, output));
+        channels.push_back(fmt::format("{{\"sampler\":{},\"target\":{{\"node\":{},\"path\":\"{}\"}}}}",
+                                       samplers.size() - 1, node, path));
+      }
+      stats.keyframes += keys.size();
+    }
+    const Vec3d t0 = to_gltf(keys.front().position);
+    const auto r0 = gltf_camera_rotation(keys.front());
+    nodes.push_back(fmt::format(
+        "{{\"name\":\"camera\",\"camera\":0,\"translation\":[{},{},{}],\"rotation\":[{},{},{},{}],"
+        "\"extras\":{{\"kind\":\"camera\",\"fov_degrees\":{}}}}}",
+        number(t0.x()), number(t0.y()), number(t0.z()), number(r0[0]), number(r0[1]), number(r0[2]), number(r0[3]),
+        number(keys.front().fov_degrees)));
+  }
+
   auto join = [](const std::vector<std::string>& v) {
     std::string s;
     for (std::size_t i = 0; i < v.size(); ++i) {
@@ -295,6 +369,7 @@ std::vector<std::uint8_t> build_glb(const SolidSet& solids, const std::vector<Po
       "\"up\":\"breakwater z is glTF y; breakwater (x, y, z) is glTF (x, z, -y)\",\"frames\":{}}}}},"
       "\"scene\":0,\"scenes\":[{{\"name\":\"breakwater\",\"nodes\":[{}]}}],\"nodes\":[{}],",
       json_string(source), range, scene_nodes, join(nodes));
+  json += cameras;
   if (!meshes.empty()) {
     json += fmt::format("\"meshes\":[{}],\"materials\":[{},{}],", join(meshes), material("static", kStaticColor),
                         material("body", kBodyColor));

@@ -12,6 +12,10 @@
 // samplers at the frames' times; a body absent from a frame (a fragment before its
 // fracture, a parent after it broke) has scale 0 there, by a STEP sampler, and keeps
 // its nearest pose.
+//
+// The scene's camera ([camera], fixed or moving), when given, is a camera node placed
+// as bw-render places it at each frame's time; glTF animates no field of view, so
+// the camera's is that of the first frame.
 #pragma once
 
 #include <cstdint>
@@ -22,6 +26,7 @@
 #include "io/frame_file.h"
 #include "io/fragments_file.h"
 #include "io/run_file.h"
+#include "render/camera_path.h"
 
 namespace bw::exporter {
 
@@ -44,6 +49,13 @@ struct PoseFrame {
   BodyStates bodies;
 };
 
+// The camera of the frames: [camera] of the run's scene, and the images' width over
+// height ([render]).
+struct GltfCamera {
+  render::CameraPath path;
+  double aspect = 16.0 / 9.0;
+};
+
 struct GltfStats {
   std::size_t static_nodes = 0;
   std::size_t body_nodes = 0;
@@ -51,11 +63,19 @@ struct GltfStats {
   std::size_t keyframes = 0;
   std::size_t triangles = 0;
   std::size_t bytes = 0;
+  bool camera = false;                  // a camera node was written
+  double fov_first = 0, fov_least = 0, fov_most = 0;  // the camera's field of view over the frames (degrees)
 };
 
-// The .glb file's bytes. `source` is recorded in the asset's extras.
+// The .glb file's bytes. `source` is recorded in the asset's extras; `camera` adds a
+// camera node.
 std::vector<std::uint8_t> build_glb(const SolidSet& solids, const std::vector<PoseFrame>& frames,
-                                    const std::string& source, GltfStats* stats = nullptr);
+                                    const std::string& source, GltfStats* stats = nullptr,
+                                    const GltfCamera* camera = nullptr);
+
+// The rotation of a glTF camera node (x, y, z, w) that looks as `camera` does: glTF's
+// camera looks down its local -z with local +y up, in glTF's (y-up) axes.
+std::array<double, 4> gltf_camera_rotation(const render::Camera& camera);
 
 // The change of axes to glTF: (x, y, z) -> (x, z, -y), and for a rotation q the
 // rotation C q C^T; returned as glTF stores it, (x, y, z, w).

@@ -14,6 +14,7 @@
 #include "io/frame_file.h"
 #include "io/run_file.h"
 #include "mesh/import.h"
+#include "render/render_settings.h"
 
 namespace bw::exporter {
 namespace fs = std::filesystem;
@@ -74,6 +75,22 @@ ExportPlan plan_export(const ExportJob& job) {
   if (!job.run_path.empty() && job.solids && run.solids.empty() && !job.water)
     fail_input("{}: the run has no solids to export", job.run_path);
 
+  if (!job.scene_path.empty() && !plan.solids)
+    fail_input("--scene {}: its camera goes into solids.glb, which {}", job.scene_path,
+               job.solids ? "this run does not get (it has no solids)" : "--no-solids leaves out");
+  if (plan.solids && job.camera) {
+    // The camera bw-render draws with: [camera] of the run's scene or of --scene.
+    render::RenderSettings look;
+    if (!job.scene_path.empty()) {
+      look = render::load_render_settings(job.scene_path);
+      plan.camera_source = job.scene_path;
+    } else if (!run.scene_text.empty()) {
+      look = render::parse_render_settings(run.scene_text, plan.run_path + ": scene");
+      plan.camera_source = "the scene of " + plan.run_path;
+    }
+    if (look.camera) plan.camera = GltfCamera{*look.camera, static_cast<double>(look.width) / look.height};
+  }
+
   if (job.output_dir.empty()) fail_input("no output folder given (-o)");
   std::error_code ec;
   if (!fs::is_directory(job.output_dir, ec)) {
@@ -93,6 +110,7 @@ ExportReport run_export(const ExportJob& job, const std::function<void(const Exp
   report.last = plan.frames.back().number;
   report.water_options = plan.water_options;
   report.spacing_source = plan.spacing_source;
+  if (plan.camera) report.camera_keys = plan.camera->path.keys().size();
 
   // Inputs of the glTF are read before any file is written, so that a bad run or
   // fragments file leaves nothing behind.
@@ -125,7 +143,9 @@ ExportReport run_export(const ExportJob& job, const std::function<void(const Exp
 
   if (plan.solids) {
     report.gltf_path = job.output_dir + "/solids.glb";
-    const std::vector<std::uint8_t> glb = build_glb(solids, poses, plan.run_path, &report.gltf);
+    const std::vector<std::uint8_t> glb =
+        build_glb(solids, poses, plan.run_path, &report.gltf, plan.camera ? &*plan.camera : nullptr);
+    report.camera_source = plan.camera_source;
     write_file_atomically(report.gltf_path, glb.data(), glb.size());
   }
   report.seconds = clock.seconds();

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,8 @@ struct ExportJob {
   std::string mesh_format;       // "", "obj" or "ply": the surface as a mesh too
   double mesh_adaptivity = 0;
   bool solids = true;            // solids.glb (when the run has solids)
+  bool camera = true;            // the scene's [camera] in solids.glb, when it has one
+  std::string scene_path;        // empty: the run's scene, as the run file keeps it
   WaterOptions water_options;    // spacing 0: the run's /parameters/spacing
 };
 
@@ -37,6 +40,8 @@ struct ExportPlan {
   std::string run_path, fragments_path;  // resolved; empty when none
   WaterOptions water_options;            // resolved
   bool solids = false;                   // a solids.glb will be written
+  std::optional<GltfCamera> camera;      // the scene's camera, when solids.glb gets one
+  std::string camera_source;             // the scene it came from
   std::string spacing_source;            // where the spacing came from
 };
 ExportPlan plan_export(const ExportJob& job);
@@ -57,6 +62,8 @@ struct ExportReport {
   std::string spacing_source;
   std::string gltf_path;
   GltfStats gltf;
+  std::string camera_source;       // where solids.glb's camera came from (gltf.camera)
+  std::size_t camera_keys = 0;     // its keys in the scene (1: fixed)
 };
 
 // Writes the files (each through a temporary name). Throws InputError for bad input,

@@ -6,9 +6,11 @@
 # Blender frame F is run frame F), that the VDB gives a volume with a grid "surface",
 # and, with --expect (written from the run's frame files), that the named bodies have
 # the expected world matrix (breakwater coordinates, z-up) or are hidden (scale 0) at
-# the given frames. Prints one line "blender-check: ..." and raises on a mismatch,
+# the given frames, and that the scene's camera stands, looks and zooms as bw-render's
+# at the given frames. Prints one line "blender-check: ..." and raises on a mismatch,
 # so Blender exits with 1.
 import json
+import math
 import os
 import struct
 import sys
@@ -58,7 +60,7 @@ if "glb" in args:
     # its numpy 1.24 (np.bool); the solids are flat-faced anyway.
     bpy.ops.import_scene.gltf(filepath=args["glb"], import_shading="FLAT")
     meshes = [o for o in scene.objects if o.type == "MESH"]
-    nodes = len(gltf.get("nodes", []))
+    nodes = len([n for n in gltf.get("nodes", []) if "mesh" in n])
     want = int(expect.get("objects", nodes))
     if len(meshes) != want:
         fail(f"{len(meshes)} mesh objects, expected {want}")
@@ -92,6 +94,24 @@ if "glb" in args:
             fail(f"{pose['name']} at frame {pose['frame']}: world matrix {[list(row) for row in m]} differs from "
                  f"{pose['matrix']} by {error:.3g}")
         report.append(f"{pose['name']}@{pose['frame']} pose error {error:.2g}")
+
+    cameras = [o for o in scene.objects if o.type == "CAMERA"]
+    if len(cameras) != len(gltf.get("cameras", [])):
+        fail(f"{len(cameras)} camera objects, the file has {len(gltf.get('cameras', []))}")
+    for view in expect.get("camera", []):
+        if len(cameras) != 1:
+            fail(f"{len(cameras)} camera objects, expected 1")
+        camera = cameras[0]
+        scene.frame_set(int(view["frame"]))
+        m = camera.matrix_world
+        # Blender's camera looks down its local -z with +y up, as glTF's.
+        got = {"position": [m[r][3] for r in range(3)], "forward": [-m[r][2] for r in range(3)],
+               "up": [m[r][1] for r in range(3)]}
+        error = max(abs(got[k][r] - view[k][r]) for k in got for r in range(3))
+        fov = math.degrees(camera.data.angle_y)
+        if error > 1e-4 or abs(fov - view["fov_degrees"]) > 1e-3:
+            fail(f"camera at frame {view['frame']}: {got}, fov {fov:.6g} degrees; expected {view}")
+        report.append(f"camera@{view['frame']} error {error:.2g}")
 
 if "vdb" in args:
     path = os.path.abspath(args["vdb"])

@@ -2,7 +2,8 @@
 // (bw-sim breaking a wall, bw-voronoi replay, bw-export) and reports what it made of
 // them; tests/export/blender_check.py compares that with the run's frame files: the
 // number of objects, the animation's frames, the VDB's grids, a fragment's world
-// matrix at a frame, the fragment hidden before its fracture and its parent after.
+// matrix at a frame, the fragment hidden before its fracture and its parent after,
+// and the scene's moving camera where bw-render puts it at three frames.
 // Blender is one of the packages tools/install-deps.sh installs; without it the test
 // fails and says so.
 #include <fstream>
@@ -15,6 +16,7 @@
 #include "io/fragments_file.h"
 #include "io/frame_file.h"
 #include "io/run_file.h"
+#include "render/render_settings.h"
 #include "test_support.h"
 
 namespace bw {
@@ -34,7 +36,10 @@ TEST(ExportBlender, BlenderImportsAFractureRun) {
                                    "blender); this test checks bw-export's files with it";
   test::TempDir dir;
   test::write_fracture_solids(dir.file(""));
-  std::ofstream(dir.file("scene.toml")) << test::fracture_scene(10.0, 0.45, 0.03, "[fracture]\nmax_chunks = 8\n");
+  const std::string camera =
+      "[camera]\ntarget = [0.3, 0.1, 0.2]\ninterpolation = \"linear\"\n[[camera.key]]\ntime = 0\nposition = [-0.5, -2, 1]\n"
+      "[[camera.key]]\ntime = 0.03\nposition = [1.5, -1.5, 1.2]\nfov = 30\n";
+  std::ofstream(dir.file("scene.toml")) << test::fracture_scene(10.0, 0.45, 0.03, "[fracture]\nmax_chunks = 8\n" + camera);
   auto r = test::run(test::tool("bw-sim") + " " + dir.file("scene.toml") + " -o " + dir.file("run") + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = test::run(test::tool("bw-voronoi") + " replay " + dir.file("run/run.h5") + " -o " + dir.file("run/fragments.h5"));
@@ -75,9 +80,21 @@ TEST(ExportBlender, BlenderImportsAFractureRun) {
   const bool wall_gone = std::find(end.bodies.id.begin(), end.bodies.id.end(), 0) == end.bodies.id.end();
   EXPECT_TRUE(wall_gone);
   if (wall_gone) poses += fmt::format(R"(,{{"name":"{}","frame":{},"hidden":true}})", run.bodies[0].name, last);
+  // The camera at frames 0, 1 and the last, as bw-render draws them; its field of view
+  // is the first frame's throughout (glTF animates none).
+  const render::CameraPath path = *render::parse_render_settings(camera, "camera").camera;
+  std::string views;
+  for (int f : {0, 1, last}) {
+    const render::Camera c = path.at(frames[static_cast<std::size_t>(f)].time);
+    const Vec3d forward = (c.target - c.position).normalized();
+    const Vec3d up = forward.cross(c.up).normalized().cross(forward);
+    views += fmt::format(R"({}{{"frame":{},"position":[{},{},{}],"forward":[{},{},{}],"up":[{},{},{}],"fov_degrees":45}})",
+                         views.empty() ? "" : ",", f, c.position.x(), c.position.y(), c.position.z(), forward.x(),
+                         forward.y(), forward.z(), up.x(), up.y(), up.z());
+  }
   std::ofstream(dir.file("expect.json")) << fmt::format(
-      R"({{"fps":100,"objects":{},"frames":[0,{}],"grids":["surface","density"],"poses":[{}]}})", objects, last,
-      poses);
+      R"({{"fps":100,"objects":{},"frames":[0,{}],"grids":["surface","density"],"poses":[{}],"camera":[{}]}})",
+      objects, last, poses, views);
 
   const std::string vdb = fmt::format("{}/water_{:06d}.vdb", dir.file("export"), last);
   r = test::run("blender -b --factory-startup --python-exit-code 1 --python " + std::string(BW_SOURCE_DIR) +

@@ -3,6 +3,7 @@
 // hidden before the fracture and the parent after it.
 #include <cstring>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "common/error.h"
@@ -76,6 +77,53 @@ TEST(Gltf, BodiesAppearAndDisappearWithTheFracture) {
   EXPECT_NE(json.find("\"name\":\"u.0\""), std::string::npos);
   // The children start hidden.
   EXPECT_EQ(count(json, "\"scale\":[0,0,0]"), run.bodies.size() - 1);
+}
+
+// glTF's camera looks down its local -z with +y up: the node's rotation takes those
+// axes to the view's, in glTF's axes.
+TEST(Gltf, ACameraNodeLooksWhereTheSceneCameraLooks) {
+  render::Camera c;
+  c.position = Vec3d(2.5, -3.0, 1.6);
+  c.target = Vec3d(0.2, 0.4, 0.3);
+  const auto r = gltf_camera_rotation(c);
+  const Eigen::Quaterniond q(r[3], r[0], r[1], r[2]);
+  EXPECT_NEAR(q.norm(), 1, 1e-12);
+  const Vec3d forward = (c.target - c.position).normalized();
+  EXPECT_LT((q * Vec3d(0, 0, -1) - to_gltf(forward)).norm(), 1e-12);
+  // The image's up is the scene's up, tilted to be square to the view.
+  const Vec3d up = to_gltf(forward.cross(Vec3d(0, 0, 1)).cross(forward).normalized());
+  EXPECT_LT((q * Vec3d(0, 1, 0) - up).norm(), 1e-12);
+}
+
+TEST(Gltf, AMovingCameraHasAKeyAtEveryFrame) {
+  test::TempDir dir;
+  const RunRecord run = test::write_export_run(dir.path());
+  const SolidSet set = SolidSet::load(dir.file("run.h5"), dir.file("fragments.h5"));
+  const std::vector<PoseFrame> frames = poses(dir.path());
+  render::CameraKey a, b;
+  a.time = frames.front().time, b.time = frames.back().time;
+  a.camera.position = Vec3d(0, -3, 1), b.camera.position = Vec3d(3, 0, 1);
+  a.camera.target = b.camera.target = Vec3d(0, 0, 0.2);
+  b.camera.fov_degrees = 30;
+  const GltfCamera camera{render::CameraPath({a, b}, render::CameraInterpolation::kLinear), 2.0};
+  GltfStats stats;
+  const std::vector<std::uint8_t> glb = build_glb(set, frames, "run.h5", &stats, &camera);
+  const std::string json(glb.begin() + 20, glb.begin() + 20 + u32(glb, 12));
+  EXPECT_TRUE(stats.camera);
+  EXPECT_EQ(stats.fov_first, 45);
+  EXPECT_EQ(stats.fov_least, 30);
+  EXPECT_EQ(count(json, "\"cameras\":[{\"name\":\"camera\",\"type\":\"perspective\""), 1u);
+  EXPECT_NE(json.find("\"aspectRatio\":2,"), std::string::npos);
+  EXPECT_NE(json.find("\"yfov\":" + fmt::format("{}", 45 * M_PI / 180)), std::string::npos);
+  EXPECT_NE(json.find("{\"name\":\"camera\",\"camera\":0,\"translation\":[0,1,3],"), std::string::npos) << json;
+  EXPECT_EQ(count(json, "\"path\":\"translation\""), run.bodies.size() + 1);
+  EXPECT_EQ(stats.keyframes, (run.bodies.size() + 1) * frames.size());
+
+  // A fixed camera: a node where it stands, no animation of its own.
+  const GltfCamera fixed{render::CameraPath::fixed(a.camera), 1.5};
+  build_glb(set, frames, "run.h5", &stats, &fixed);
+  EXPECT_TRUE(stats.camera);
+  EXPECT_EQ(stats.keyframes, run.bodies.size() * frames.size());
 }
 
 TEST(Gltf, WithoutFragmentsTheChildrenHaveNoMesh) {

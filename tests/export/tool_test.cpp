@@ -1,5 +1,7 @@
 // bw-export end to end on a small run: the files it writes, frame ranges, and bad
 // inputs refused with one line, exit status 2 and nothing written.
+#include <fstream>
+
 #include <gtest/gtest.h>
 
 #include "export_fixture.h"
@@ -60,7 +62,15 @@ TEST(ExportTool, BadInputsWriteNothing) {
       {dir.file("frames") + out + " --no-water --density", "--density asks for the water, which --no-water leaves out"},
       {dir.file("frames") + out + " --fragments " + dir.file("u.h5"), "u.h5: is a 'particles' file, expected a 'fragments' file"},
       {dir.file("frames") + out + " --run " + dir.file("frames/000000.h5"), "000000.h5: is a 'frame' file, expected a 'run' file"},
+      {dir.file("frames") + out + " --scene " + dir.file("bad.toml"),
+       "bad.toml: camera.key[1].time: 0 is not after camera.key[0].time = 1"},
+      {dir.file("frames") + out + " --scene " + dir.file("missing.toml"), "missing.toml"},
+      {dir.file("frames") + out + " --scene " + dir.file("bad.toml") + " --no-solids",
+       "its camera goes into solids.glb, which --no-solids leaves out"},
+      {dir.file("frames") + out + " --scene " + dir.file("bad.toml") + " --no-camera", "excludes"},
   };
+  std::ofstream(dir.file("bad.toml")) << "[camera]\ntarget = [0, 0, 0]\n[[camera.key]]\ntime = 1\nposition = [0, -1, 1]\n"
+                                         "[[camera.key]]\ntime = 0\nposition = [1, -1, 1]\n";
   for (const Case& c : cases) {
     const auto r = test::run(export_cmd(c.args));
     EXPECT_EQ(r.exit_code, 2) << c.args << ": " << r.err;
@@ -68,6 +78,33 @@ TEST(ExportTool, BadInputsWriteNothing) {
     EXPECT_EQ(test::line_count(r.err), 1) << r.err;
     EXPECT_EQ(test::exists(dir.file("out")) ? test::list_folder(dir.file("out")) : "", "") << c.args;
   }
+}
+
+// The scene's camera goes into solids.glb: the run's by default, --scene's when given,
+// none with --no-camera; a field of view that changes is said (glTF animates none).
+TEST(ExportTool, TheScenesCameraGoesIntoTheGltf) {
+  test::TempDir dir;
+  test::write_export_run(dir.path());
+  auto r = test::run(export_cmd(dir.file("frames") + " -o " + dir.file("none") + " --no-water -v"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("camera       none: the scene has no [camera]"), std::string::npos) << r.err;
+  EXPECT_EQ(test::file_bytes(dir.file("none/solids.glb")).find("\"cameras\""), std::string::npos);
+
+  std::ofstream(dir.file("moving.toml")) << "[camera]\ntarget = [0, 0, 0]\nfov = 40\n"
+                                            "[[camera.key]]\ntime = 0\nposition = [0, -2, 1]\n"
+                                            "[[camera.key]]\ntime = 1\nposition = [2, -2, 1]\nfov = 20\n";
+  r = test::run(export_cmd(dir.file("frames") + " -o " + dir.file("moving") + " --no-water --scene " +
+                           dir.file("moving.toml")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("camera       from " + dir.file("moving.toml") + ", moving (2 keys)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the camera's field of view changes over the frames"), std::string::npos) << r.err;
+  const std::string glb = test::file_bytes(dir.file("moving/solids.glb"));
+  EXPECT_NE(glb.find("\"cameras\":[{\"name\":\"camera\""), std::string::npos);
+  EXPECT_NE(glb.find("\"fov_degrees\":40}"), std::string::npos);
+
+  r = test::run(export_cmd(dir.file("frames") + " -o " + dir.file("left") + " --no-water --no-camera -q"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(test::file_bytes(dir.file("left/solids.glb")), test::file_bytes(dir.file("none/solids.glb")));
 }
 
 TEST(ExportTool, WithoutARunTheSpacingIsNeeded) {

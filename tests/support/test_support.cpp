@@ -71,6 +71,13 @@ std::string list_folder(const std::string& path) {
   return text;
 }
 
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
 void figure(const std::string& name, double value, const std::string& unit) {
   std::printf("[ figure   ] %s: %.6g%s%s\n", name.c_str(), value, unit.empty() ? "" : " ", unit.c_str());
   std::fflush(stdout);

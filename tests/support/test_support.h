@@ -38,6 +38,9 @@ bool exists(const std::string& path);
 // Lists the files of a folder, names only, sorted.
 std::string list_folder(const std::string& path);
 
+// A file's bytes ("" when it cannot be read).
+std::string file_bytes(const std::string& path);
+
 // Prints a figure the test measured ("[ figure ] name: value") so that it shows in
 // the test log next to the assertion that bounds it.
 void figure(const std::string& name, double value, const std::string& unit = "");

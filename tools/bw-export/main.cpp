@@ -24,6 +24,8 @@ struct Options {
   bool density = false;
   bool no_water = false;
   bool no_solids = false;
+  std::string scene;
+  bool no_camera = false;
   bool quiet = false;
   bool verbose = false;
 
@@ -39,6 +41,8 @@ struct Options {
     j.mesh_format = mesh;
     j.mesh_adaptivity = adaptivity;
     j.solids = !no_solids;
+    j.scene_path = scene;
+    j.camera = !no_camera;
     j.water_options.spacing = spacing;
     j.water_options.radius = radius;
     j.water_options.voxel = voxel;
@@ -66,6 +70,17 @@ void print_summary(const Options& o, const bw::exporter::ExportReport& r) {
   if (!r.gltf_path.empty()) {
     std::fprintf(stderr, "  solids       %s: %zu static, %zu bodies, %zu triangles, %s\n", r.gltf_path.c_str(),
                  r.gltf.static_nodes, r.gltf.body_nodes, r.gltf.triangles, bw::human_bytes(r.gltf.bytes).c_str());
+    if (r.gltf.camera) {
+      std::fprintf(stderr, "  camera       from %s, %s\n", r.camera_source.c_str(),
+                   r.camera_keys > 1 ? fmt::format("moving ({} keys)", r.camera_keys).c_str() : "fixed");
+      if (r.gltf.fov_least != r.gltf.fov_most)
+        std::fprintf(stderr,
+                     "  note         the camera's field of view changes over the frames (%g to %g degrees); glTF "
+                     "animates none, so solids.glb holds the first frame's, %g\n",
+                     r.gltf.fov_least, r.gltf.fov_most, r.gltf.fov_first);
+    } else if (o.verbose && !o.no_camera) {
+      std::fprintf(stderr, "  camera       none: the scene has no [camera] (bw-render fits one; bw-render -v prints it)\n");
+    }
     if (r.gltf.bodies_without_mesh)
       std::fprintf(stderr, "  note         %zu bodies had no mesh to export (give --fragments from bw-voronoi replay)\n",
                    r.gltf.bodies_without_mesh);
@@ -113,6 +128,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"z", "y"}));
   app.add_flag("--no-water", o.no_water, "Leave out the water (only solids.glb)");
   app.add_flag("--no-solids", o.no_solids, "Leave out solids.glb (only the water)");
+  auto* scene = app.add_option("--scene", o.scene,
+                               "Scene file whose [camera] (and [render] size) solids.glb gets (default: the run's scene)");
+  app.add_flag("--no-camera", o.no_camera, "Leave the scene's camera out of solids.glb")->excludes(scene);
   app.add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
   app.add_flag("-v,--verbose", o.verbose, "Print the level set's settings and where they came from");
 
