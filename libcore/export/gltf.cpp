@@ -302,6 +302,7 @@ std::vector<std::uint8_t> build_glb(const SolidSet& solids, const std::vector<Po
       }
     const double zfar = 2 * std::max(farthest, 1e-3), znear = zfar * 1e-4;
     stats.camera = true;
+    stats.camera_first = keys.front();
     stats.fov_first = stats.fov_least = stats.fov_most = keys.front().fov_degrees;
     for (const render::Camera& c : keys) {
       stats.fov_least = std::min(stats.fov_least, c.fov_degrees);

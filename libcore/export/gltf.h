@@ -64,6 +64,7 @@ struct GltfStats {
   std::size_t triangles = 0;
   std::size_t bytes = 0;
   bool camera = false;                  // a camera node was written
+  render::Camera camera_first;          // the camera at the first frame
   double fov_first = 0, fov_least = 0, fov_most = 0;  // the camera's field of view over the frames (degrees)
 };
 

@@ -14,6 +14,7 @@
 #include "io/frame_file.h"
 #include "io/run_file.h"
 #include "mesh/import.h"
+#include "render/framing.h"
 #include "render/render_settings.h"
 
 namespace bw::exporter {
@@ -88,7 +89,18 @@ ExportPlan plan_export(const ExportJob& job) {
       look = render::parse_render_settings(run.scene_text, plan.run_path + ": scene");
       plan.camera_source = "the scene of " + plan.run_path;
     }
-    if (look.camera) plan.camera = GltfCamera{*look.camera, static_cast<double>(look.width) / look.height};
+    const double aspect = static_cast<double>(look.width) / look.height;
+    if (look.camera) {
+      plan.camera = GltfCamera{*look.camera, aspect};
+    } else {
+      // No [camera]: the one bw-render fits to the reference frame, from the same
+      // frames, solids and look, so Blender sees what the images show.
+      const render::SolidScene scene = render::SolidScene::load({plan.run_path, plan.fragments_path}, {});
+      const render::Framing framing = render::frame_sequence(
+          render::reference_frame_candidates(require_frame_files(job.frames_dir)), look, scene);
+      plan.camera = GltfCamera{render::CameraPath::fixed(framing.camera), aspect};
+      plan.camera_source = fmt::format("the fit to {} (as bw-render's)", framing.reference_frame);
+    }
   }
 
   if (job.output_dir.empty()) fail_input("no output folder given (-o)");

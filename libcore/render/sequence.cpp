@@ -15,6 +15,7 @@
 #include "io/frame_range.h"
 #include "io/h5.h"
 #include "render/camera.h"
+#include "render/framing.h"
 #include "render/gl_context.h"
 #include "render/image.h"
 #include "render/particle_spacing.h"
@@ -29,14 +30,6 @@ namespace {
 
 // Video frame rate when the frames' times do not give one.
 constexpr double kDefaultFps = 30;
-// The reference frame is the folder's first with at least kReferenceParticles
-// particles (a scene with emitters starts nearly empty), among its first
-// kReferenceScan frames; failing that, the folder's first.
-constexpr std::size_t kReferenceParticles = 64;
-constexpr int kReferenceScan = 32;
-// Sphere radius (m) when the reference frame has too few particles to measure their
-// spacing: a centimetre suits the metre-sized example scenes.
-constexpr double kFallbackRadius = 0.01;
 
 std::vector<double> parse_numbers(std::string_view s, const std::string& whole) {
   std::vector<double> out;
@@ -90,10 +83,7 @@ RenderSettings run_render_settings(const std::string& run_path) {
 SequencePlan plan_sequence(const SequenceJob& job) {
   SequencePlan plan;
   const std::map<int, std::string> frames = require_frame_files(job.frames_dir);
-  for (const auto& [number, path] : frames) {
-    if (static_cast<int>(plan.reference_frames.size()) == kReferenceScan) break;
-    plan.reference_frames.push_back(path);
-  }
+  plan.reference_frames = reference_frame_candidates(frames);
 
   const int first = job.range.first.value_or(frames.begin()->first);
   const int last = job.range.last.value_or(frames.rbegin()->first);
@@ -144,67 +134,15 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
   report.solids = solids.solid_count();
   report.fragments = solids.fragment_count();
 
-  // The reference frame fixes what must not change within a sequence, whichever part
-  // of it this process renders: particle size, ground height, the fitted camera.
-  // Chosen among the folder's first frames, not the range's, so every part agrees.
-  FrameData reference = read_frame(plan.reference_frames.front());
-  report.reference_frame = plan.reference_frames.front();
-  for (std::size_t k = 1; k < plan.reference_frames.size() && reference.fluid_count() < kReferenceParticles; ++k) {
-    FrameData next = read_frame(plan.reference_frames[k]);
-    if (next.fluid_count() >= kReferenceParticles) {
-      reference = std::move(next);
-      report.reference_frame = plan.reference_frames[k];
-    }
-  }
-  const double spacing =
-      estimate_particle_spacing(reference.x.data(), reference.y.data(), reference.z.data(), reference.fluid_count());
-  double radius = settings.particle_radius;
-  if (!(radius > 0)) radius = spacing > 0 ? settings.particle_radius_factor * spacing : kFallbackRadius;
-  report.particle_radius = radius;
-  report.particle_spacing = spacing;
-
-  Aabb solid_box = solids.reference_bounds();
-  const TriangleSoup reference_solids = solids.place(reference.bodies);
-  const Aabb placed = reference_solids.bounds();
-  if (!placed.empty()) solid_box.add(placed.min), solid_box.add(placed.max);
-  std::vector<Vec3d> water;
-  water.reserve(reference.fluid_count());
-  Aabb box = solid_box;
-  for (std::size_t i = 0; i < reference.fluid_count(); ++i) {
-    const Vec3d p(reference.x[i], reference.y[i], reference.z[i]);
-    if (!p.allFinite()) continue;
-    water.push_back(p);
-    box.add(p - Vec3d::Constant(radius));
-    box.add(p + Vec3d::Constant(radius));
-  }
-  report.ground_height = settings.ground_height.value_or(box.empty() ? 0.0 : box.min.z());
-  const double aspect = static_cast<double>(settings.width) / settings.height;
-  // Solids hide water: the fitted view is chosen to see it, and either camera is
-  // checked for how much of it it sees.
-  const Occluders occluders(reference_solids);
-  if (settings.camera) {
-    report.camera = settings.camera->at(reference.time);
-    report.camera_keys = settings.camera->keys().size();
-  } else {
-    ViewFitInput fit;
-    fit.solids = solid_box;
-    fit.occluders = &occluders;
-    fit.particle_radius = radius;
-    if (settings.ground) fit.ground_height = report.ground_height;
-    fit.water = water;
-    const FittedView view = fit_view(fit, Camera{}.fov_degrees, aspect);
-    report.camera = view.camera;
-    report.camera_fitted = true;
-    report.fit_azimuth = view.azimuth;
-    report.fit_elevation = view.elevation;
-    report.fit_surface_seen = view.surface_seen;
-    report.fit_floor_seen = view.floor_seen;
-  }
-  report.reference_water = water.size();
-  report.water_seen = fraction_seen(report.camera, aspect, water, &occluders);
+  // What must not change within a sequence, whichever part of it this process
+  // renders: particle size, ground height, the fitted camera (framing.h).
+  report.framing = frame_sequence(plan.reference_frames, settings, solids);
+  if (settings.camera) report.camera_keys = settings.camera->keys().size();
+  const Framing& framing = report.framing;
+  const double radius = framing.particle_radius, spacing = framing.particle_spacing;
 
   // A moving camera is checked at every frame's time before anything is drawn.
-  std::vector<Camera> frame_cameras(plan.frames.size(), report.camera);
+  std::vector<Camera> frame_cameras(plan.frames.size(), framing.camera);
   if (settings.camera && settings.camera->animated())
     for (std::size_t i = 0; i < plan.frames.size(); ++i) {
       frame_cameras[i] = settings.camera->at(plan.frames[i].time);
@@ -225,7 +163,7 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
         "camera {:.6g},{:.6g},{:.6g}:{:.6g},{:.6g},{:.6g}:{:.6g} up {:.6g},{:.6g},{:.6g}; particle radius {:.6g} m "
         "(spacing {:.6g} m); ground {:.6g} m; filter {}; light {:.6g},{:.6g},{:.6g}; {} x {}",
         c.position.x(), c.position.y(), c.position.z(), c.target.x(), c.target.y(), c.target.z(), c.fov_degrees,
-        c.up.x(), c.up.y(), c.up.z(), radius, spacing, report.ground_height, filter_name(settings.filter),
+        c.up.x(), c.up.y(), c.up.z(), radius, spacing, framing.ground_height, filter_name(settings.filter),
         settings.light.direction.x(), settings.light.direction.y(), settings.light.direction.z(), settings.width,
         settings.height);
   };
@@ -245,7 +183,7 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
     input.camera = frame_cameras[i];
     input.particle_radius = radius;
     input.particle_spacing = spacing;
-    input.ground_height = report.ground_height;
+    input.ground_height = framing.ground_height;
     const Image image = renderer.render(input);
     const std::vector<std::uint8_t> png = encode_png(image, {{"Software", "bw-render " BW_VERSION},
                                                              {"Title", fmt::format("frame {}, t = {:.6g} s", f.number, f.time)},

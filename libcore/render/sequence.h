@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/frame_range.h"
+#include "render/framing.h"
 #include "render/render_settings.h"
 
 namespace bw::render {
@@ -73,18 +74,8 @@ struct SequenceReport {
   double seconds = 0;            // wall clock, everything
   double render_ms_per_frame = 0;  // reading, drawing and writing one frame
   std::string renderer, display;   // GL_RENDERER; how the EGL display was found
-  std::string reference_frame;     // the frame that fixed particle size, ground, camera
-  Camera camera;                   // at the reference frame's time
+  Framing framing;                 // reference frame, particle size, ground, camera (framing.h)
   std::size_t camera_keys = 0;     // keys of a given camera (1: fixed); 0: fitted
-  bool camera_fitted = false;
-  // A fitted camera's direction (degrees) and the fractions of the probes on the
-  // water's surface and on the floor around it that it sees (view_fit.h; -1: none).
-  double fit_azimuth = 0, fit_elevation = 0, fit_surface_seen = -1, fit_floor_seen = -1;
-  // Particles of the reference frame, and the fraction of them that the camera sees:
-  // in the image and hidden by no solid (0 with a camera that sees no water).
-  std::size_t reference_water = 0;
-  double water_seen = 0;
-  double particle_radius = 0, particle_spacing = 0, ground_height = 0;
   std::size_t max_particles = 0;
   std::size_t bodies_without_mesh = 0;  // largest count in any frame
   std::size_t solids = 0, fragments = 0;

@@ -73,13 +73,16 @@ void print_summary(const Options& o, const bw::exporter::ExportReport& r) {
     if (r.gltf.camera) {
       std::fprintf(stderr, "  camera       from %s, %s\n", r.camera_source.c_str(),
                    r.camera_keys > 1 ? fmt::format("moving ({} keys)", r.camera_keys).c_str() : "fixed");
+      const auto& c = r.gltf.camera_first;
+      if (o.verbose)
+        std::fprintf(stderr, "  at frame %-5d%g,%g,%g:%g,%g,%g:%g (as bw-render --camera takes it)\n", r.first,
+                     c.position.x(), c.position.y(), c.position.z(), c.target.x(), c.target.y(), c.target.z(),
+                     c.fov_degrees);
       if (r.gltf.fov_least != r.gltf.fov_most)
         std::fprintf(stderr,
                      "  note         the camera's field of view changes over the frames (%g to %g degrees); glTF "
                      "animates none, so solids.glb holds the first frame's, %g\n",
                      r.gltf.fov_least, r.gltf.fov_most, r.gltf.fov_first);
-    } else if (o.verbose && !o.no_camera) {
-      std::fprintf(stderr, "  camera       none: the scene has no [camera] (bw-render fits one; bw-render -v prints it)\n");
     }
     if (r.gltf.bodies_without_mesh)
       std::fprintf(stderr, "  note         %zu bodies had no mesh to export (give --fragments from bw-voronoi replay)\n",

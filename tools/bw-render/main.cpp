@@ -66,6 +66,7 @@ struct Options {
 
 void print_summary(const Options& o, const bw::render::SequenceJob& job, const std::string& look,
                    const bw::render::SequenceReport& r) {
+  const bw::render::Framing& f = r.framing;
   std::fprintf(stderr, "bw-render: %zu frame%s (%06d..%06d) -> %s in %s, %.0f ms per frame\n", r.frames,
                r.frames == 1 ? "" : "s", r.first, r.last, o.output_dir.c_str(), bw::human_duration(r.seconds).c_str(),
                r.render_ms_per_frame);
@@ -73,40 +74,40 @@ void print_summary(const Options& o, const bw::render::SequenceJob& job, const s
   if (r.bodies_without_mesh)
     std::fprintf(stderr, "  note         up to %zu bodies per frame had no mesh to draw (give --fragments)\n",
                  r.bodies_without_mesh);
-  if (r.reference_water > 0 && r.water_seen == 0)
+  if (f.reference_water > 0 && f.water_seen == 0)
     std::fprintf(stderr,
                  "  note         the camera%s sees none of the water of the reference frame: solids hide it or it is "
                  "out of view\n",
                  r.camera_keys > 1 ? " at the reference frame's time" : "");
   if (!o.verbose) return;
   const auto& s = job.settings;
-  const auto& c = r.camera;
+  const auto& c = f.camera;
   std::fprintf(stderr, "  renderer     %s (%s)\n", r.renderer.c_str(), r.display.c_str());
   std::fprintf(stderr, "  look         %s\n", look.c_str());
   std::fprintf(stderr, "  image        %d x %d, filter %s\n", s.width, s.height, bw::render::filter_name(s.filter));
   std::fprintf(stderr, "  camera       %g,%g,%g:%g,%g,%g:%g%s\n", c.position.x(), c.position.y(), c.position.z(),
                c.target.x(), c.target.y(), c.target.z(), c.fov_degrees,
-               r.camera_fitted ? " (fitted)" : r.camera_keys > 1 ? " (at the reference frame)" : "");
+               f.camera_fitted ? " (fitted)" : r.camera_keys > 1 ? " (at the reference frame)" : "");
   if (s.camera && s.camera->animated()) {
     const auto& keys = s.camera->keys();
     std::fprintf(stderr, "  moving       %zu keys from t = %g to %g s, %s\n", keys.size(), keys.front().time,
                  keys.back().time, bw::render::camera_interpolation_name(s.camera->interpolation()));
   }
-  if (r.camera_fitted) {
+  if (f.camera_fitted) {
     std::string seen;
-    if (r.fit_surface_seen >= 0) seen += fmt::format(", sees {:.0f}% of the water's surface", 100 * r.fit_surface_seen);
-    if (r.fit_floor_seen >= 0) seen += fmt::format(" and {:.0f}% of the floor around it", 100 * r.fit_floor_seen);
-    std::fprintf(stderr, "  view         azimuth %g, elevation %g degrees%s\n", r.fit_azimuth, r.fit_elevation,
+    if (f.fit_surface_seen >= 0) seen += fmt::format(", sees {:.0f}% of the water's surface", 100 * f.fit_surface_seen);
+    if (f.fit_floor_seen >= 0) seen += fmt::format(" and {:.0f}% of the floor around it", 100 * f.fit_floor_seen);
+    std::fprintf(stderr, "  view         azimuth %g, elevation %g degrees%s\n", f.fit_azimuth, f.fit_elevation,
                  seen.c_str());
   }
-  if (r.reference_water > 0)
+  if (f.reference_water > 0)
     std::fprintf(stderr, "  water        %.0f%% of the reference frame's particles in view, not hidden by solids\n",
-                 100 * r.water_seen);
+                 100 * f.water_seen);
   std::fprintf(stderr, "  particles    up to %zu, radius %.4g m (spacing %.4g m)\n", r.max_particles,
-               r.particle_radius, r.particle_spacing);
+               f.particle_radius, f.particle_spacing);
   std::fprintf(stderr, "  solids       %zu, fragments %zu, ground at z = %.4g\n", r.solids, r.fragments,
-               r.ground_height);
-  std::fprintf(stderr, "  reference    %s (particle size, ground, fitted camera)\n", r.reference_frame.c_str());
+               f.ground_height);
+  std::fprintf(stderr, "  reference    %s (particle size, ground, fitted camera)\n", f.reference_frame.c_str());
 }
 
 }  // namespace

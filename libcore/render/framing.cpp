@@ -1,0 +1,91 @@
+#include "render/framing.h"
+
+#include "io/frame_file.h"
+#include "render/particle_spacing.h"
+#include "render/view_fit.h"
+
+namespace bw::render {
+namespace {
+
+// The reference frame is the folder's first with at least kReferenceParticles
+// particles (a scene with emitters starts nearly empty), among its first
+// kReferenceScan frames; failing that, the folder's first.
+constexpr std::size_t kReferenceParticles = 64;
+constexpr std::size_t kReferenceScan = 32;
+// Sphere radius (m) when the reference frame has too few particles to measure their
+// spacing: a centimetre suits the metre-sized example scenes.
+constexpr double kFallbackRadius = 0.01;
+
+}  // namespace
+
+std::vector<std::string> reference_frame_candidates(const std::map<int, std::string>& frames) {
+  std::vector<std::string> out;
+  for (const auto& [number, path] : frames) {
+    if (out.size() == kReferenceScan) break;
+    out.push_back(path);
+  }
+  return out;
+}
+
+Framing frame_sequence(const std::vector<std::string>& candidates, const RenderSettings& settings,
+                       const SolidScene& solids) {
+  Framing framing;
+  FrameData reference = read_frame(candidates.front());
+  framing.reference_frame = candidates.front();
+  for (std::size_t k = 1; k < candidates.size() && reference.fluid_count() < kReferenceParticles; ++k) {
+    FrameData next = read_frame(candidates[k]);
+    if (next.fluid_count() >= kReferenceParticles) {
+      reference = std::move(next);
+      framing.reference_frame = candidates[k];
+    }
+  }
+  framing.reference_time = reference.time;
+  const double spacing =
+      estimate_particle_spacing(reference.x.data(), reference.y.data(), reference.z.data(), reference.fluid_count());
+  double radius = settings.particle_radius;
+  if (!(radius > 0)) radius = spacing > 0 ? settings.particle_radius_factor * spacing : kFallbackRadius;
+  framing.particle_radius = radius;
+  framing.particle_spacing = spacing;
+
+  Aabb solid_box = solids.reference_bounds();
+  const TriangleSoup reference_solids = solids.place(reference.bodies);
+  const Aabb placed = reference_solids.bounds();
+  if (!placed.empty()) solid_box.add(placed.min), solid_box.add(placed.max);
+  std::vector<Vec3d> water;
+  water.reserve(reference.fluid_count());
+  Aabb box = solid_box;
+  for (std::size_t i = 0; i < reference.fluid_count(); ++i) {
+    const Vec3d p(reference.x[i], reference.y[i], reference.z[i]);
+    if (!p.allFinite()) continue;
+    water.push_back(p);
+    box.add(p - Vec3d::Constant(radius));
+    box.add(p + Vec3d::Constant(radius));
+  }
+  framing.ground_height = settings.ground_height.value_or(box.empty() ? 0.0 : box.min.z());
+  const double aspect = static_cast<double>(settings.width) / settings.height;
+  // Solids hide water: the fitted view is chosen to see it, and either camera is
+  // checked for how much of it it sees.
+  const Occluders occluders(reference_solids);
+  if (settings.camera) {
+    framing.camera = settings.camera->at(reference.time);
+  } else {
+    ViewFitInput fit;
+    fit.solids = solid_box;
+    fit.occluders = &occluders;
+    fit.particle_radius = radius;
+    if (settings.ground) fit.ground_height = framing.ground_height;
+    fit.water = water;
+    const FittedView view = fit_view(fit, Camera{}.fov_degrees, aspect);
+    framing.camera = view.camera;
+    framing.camera_fitted = true;
+    framing.fit_azimuth = view.azimuth;
+    framing.fit_elevation = view.elevation;
+    framing.fit_surface_seen = view.surface_seen;
+    framing.fit_floor_seen = view.floor_seen;
+  }
+  framing.reference_water = water.size();
+  framing.water_seen = fraction_seen(framing.camera, aspect, water, &occluders);
+  return framing;
+}
+
+}  // namespace bw::render
