@@ -4,23 +4,16 @@
 #include <cmath>
 #include <functional>
 
-#include "common/error.h"
 #include "render/camera_path.h"
 #include "render/render_settings.h"
+#include "test_support.h"
 
 namespace br = bw::render;
 using bw::Vec3d;
 
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const bw::InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
-}
+std::string error_of(const std::function<void()>& f) { return bw::test::input_error_of(f); }
 
 br::CameraKey key(double time, Vec3d position, double fov = 45) {
   br::CameraKey k;
@@ -146,6 +139,8 @@ TEST(CameraPath, BadKeysAreNamed) {
             "s.toml: camera.key[0].fov: 190 is outside (0, 180) degrees");
   EXPECT_EQ(error(base + "[[camera.key]]\ntime = 0\nposition = [0, 0, 0]\n"),
             "s.toml: camera.key[0].target: equals the position");
+  EXPECT_EQ(error(base + "[[camera.key]]\ntime = 0\nposition = [1e300, 0, 0]\n"),
+            "s.toml: camera.key[0].position: more than 1e+09 m from the origin");
   // Each key is fine, but the camera flies through its target half way.
   EXPECT_EQ(error(base + "[[camera.key]]\ntime = 0\nposition = [-1, 0, 0]\n[[camera.key]]\ntime = 2\nposition = [1, 0, 0]\n"),
             "s.toml: camera.key[0] to camera.key[1]: at t = 1 s, target: equals the position");

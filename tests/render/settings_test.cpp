@@ -28,14 +28,7 @@ using bw::Vec3d;
 
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const bw::InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
-}
+std::string error_of(const std::function<void()>& f) { return bw::test::input_error_of(f); }
 
 // Triangles of meshes as the renderer draws them (grey, flat normals).
 br::TriangleSoup soup_of(std::initializer_list<bw::TriMesh> meshes) {

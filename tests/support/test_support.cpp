@@ -14,6 +14,8 @@
 
 #include <fmt/format.h>
 
+#include "common/error.h"
+
 namespace bw::test {
 namespace fs = std::filesystem;
 
@@ -76,6 +78,15 @@ std::string file_bytes(const std::string& path) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+std::string input_error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no InputError)";
 }
 
 void figure(const std::string& name, double value, const std::string& unit) {

@@ -1,6 +1,7 @@
 // Helpers shared by the tests: temporary folders, running the tools, figures.
 #pragma once
 
+#include <functional>
 #include <string>
 
 namespace bw::test {
@@ -40,6 +41,9 @@ std::string list_folder(const std::string& path);
 
 // A file's bytes ("" when it cannot be read).
 std::string file_bytes(const std::string& path);
+
+// The message of the InputError that `f` throws; "(no InputError)" when it throws none.
+std::string input_error_of(const std::function<void()>& f);
 
 // Prints a figure the test measured ("[ figure ] name: value") so that it shows in
 // the test log next to the assertion that bounds it.
