@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <limits>
 
+#include <fmt/format.h>
+
+#include "common/text.h"
 #include "io/h5.h"
 
 namespace bw {
@@ -178,6 +181,16 @@ bool describe_table(const h5::Group& group, const std::string& key, Report& out)
   for (std::size_t r = 0; r < rows; ++r)
     for (std::size_t c = 0; c < columns.size(); ++c) table.rows[r].push_back(data[c][r]);
   out.set(key, std::move(table));
+  // Rows with names (bodies, sensors) keep them in an attribute, one a line: listed
+  // in order, the first kListedNames.
+  if (group.has_attr("names")) {
+    constexpr std::size_t kListedNames = 64;
+    const std::vector<std::string> names = split(group.attr_string("names"), '\n');
+    std::string listed;
+    for (std::size_t i = 0; i < names.size() && i < kListedNames; ++i) listed += (i ? ", " : "") + names[i];
+    if (names.size() > kListedNames) listed += fmt::format(" and {} more", names.size() - kListedNames);
+    out.set(key + "_names", listed);
+  }
   return true;
 }
 
