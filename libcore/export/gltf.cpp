@@ -285,9 +285,12 @@ std::vector<std::uint8_t> build_glb(const SolidSet& solids, const std::vector<Po
   if (camera) {
     // At each frame's time, as bw-render draws it; one key when it does not move.
     std::vector<render::Camera> keys;
-    if (frames.empty() || !camera->path.animated()) keys.push_back(camera->path.at(frames.empty() ? 0 : frames.front().time));
-    else
-      for (const PoseFrame& f : frames) keys.push_back(camera->path.at(f.time));
+    if (frames.empty() || (!camera->path.animated() && camera->track.id < 0)) {
+      keys.push_back(camera->path.at(frames.empty() ? 0 : frames.front().time));
+    } else {
+      for (const PoseFrame& f : frames)
+        keys.push_back(render::frame_camera(camera->path, camera->track, f.time, f.bodies, fmt::format("frame {}", f.number)));
+    }
     // Clip planes that hold the solids and the targets from every key.
     Aabb box;
     for (const TriMesh& m : solids.solid_meshes)

@@ -13,9 +13,9 @@
 // fracture, a parent after it broke) has scale 0 there, by a STEP sampler, and keeps
 // its nearest pose.
 //
-// The scene's camera ([camera], fixed or moving), when given, is a camera node placed
-// as bw-render places it at each frame's time; glTF animates no field of view, so
-// the camera's is that of the first frame.
+// The scene's camera ([camera], fixed, moving or tracking a body), when given, is a
+// camera node placed as bw-render places it at each frame; glTF animates no field of
+// view, so the camera's is that of the first frame.
 #pragma once
 
 #include <cstdint>
@@ -27,6 +27,7 @@
 #include "io/fragments_file.h"
 #include "io/run_file.h"
 #include "render/camera_path.h"
+#include "render/framing.h"
 
 namespace bw::exporter {
 
@@ -54,6 +55,7 @@ struct PoseFrame {
 struct GltfCamera {
   render::CameraPath path;
   double aspect = 16.0 / 9.0;
+  render::TrackedBody track;   // [camera] track: the body it looks at (id -1: none)
 };
 
 struct GltfStats {

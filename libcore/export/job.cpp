@@ -91,7 +91,12 @@ ExportPlan plan_export(const ExportJob& job) {
     }
     const double aspect = static_cast<double>(look.width) / look.height;
     if (look.camera) {
-      plan.camera = GltfCamera{*look.camera, aspect};
+      plan.camera = GltfCamera{*look.camera, aspect, render::tracked_body(look, plan.run_path)};
+      // A tracked body must be in every frame: checked before anything is written.
+      if (plan.camera->track.id >= 0)
+        for (const FrameRef& f : plan.frames)
+          render::frame_camera(plan.camera->path, plan.camera->track, f.time, read_frame_header(f.path, true).bodies,
+                               f.path);
     } else {
       // No [camera]: the one bw-render fits to the reference frame, from the same
       // frames, solids and look, so Blender sees what the images show.
@@ -122,7 +127,10 @@ ExportReport run_export(const ExportJob& job, const std::function<void(const Exp
   report.last = plan.frames.back().number;
   report.water_options = plan.water_options;
   report.spacing_source = plan.spacing_source;
-  if (plan.camera) report.camera_keys = plan.camera->path.keys().size();
+  if (plan.camera) {
+    report.camera_keys = plan.camera->path.keys().size();
+    report.camera_track = plan.camera->track.name;
+  }
 
   // Inputs of the glTF are read before any file is written, so that a bad run or
   // fragments file leaves nothing behind.

@@ -64,6 +64,7 @@ struct ExportReport {
   GltfStats gltf;
   std::string camera_source;       // where solids.glb's camera came from (gltf.camera)
   std::size_t camera_keys = 0;     // its keys in the scene (1: fixed)
+  std::string camera_track;        // the body it looks at; empty: none
 };
 
 // Writes the files (each through a temporary name). Throws InputError for bad input,

@@ -36,16 +36,17 @@ double monotone_slope(double d_before, double d_after, double h_before, double h
 
 }  // namespace
 
-std::string camera_problem(const Camera& c) {
+std::string camera_problem(const Camera& c, bool with_target) {
   if (!(c.fov_degrees > 0 && c.fov_degrees < 180))
     return fmt::format("fov: {} is outside (0, 180) degrees", c.fov_degrees);
   // Beyond this the renderer's single precision has no room left for the scene.
   constexpr double kFarthest = 1e9;
   if (!(c.position.norm() < kFarthest)) return fmt::format("position: more than {:g} m from the origin", kFarthest);
+  if (!(c.up.norm() > 0)) return "up: is the zero vector";
+  if (!with_target) return {};
   if (!(c.target.norm() < kFarthest)) return fmt::format("target: more than {:g} m from the origin", kFarthest);
   const Vec3d view = c.target - c.position;
   if (!(view.norm() > 0)) return "target: equals the position";
-  if (!(c.up.norm() > 0)) return "up: is the zero vector";
   if (!(c.up.normalized().cross(view.normalized()).norm() > 1e-6)) return "up: is parallel to the viewing direction";
   return {};
 }

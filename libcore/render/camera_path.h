@@ -27,8 +27,10 @@ struct Camera {
 };
 
 // Empty when a camera can be drawn with; else what is wrong, naming the key
-// ("fov: 190 is outside (0, 180) degrees", "target: equals the position").
-std::string camera_problem(const Camera& camera);
+// ("fov: 190 is outside (0, 180) degrees", "target: equals the position"). Without
+// `with_target` (a camera whose target is a body's centre, known per frame), only
+// what does not depend on the target.
+std::string camera_problem(const Camera& camera, bool with_target = true);
 
 enum class CameraInterpolation { kSmooth, kLinear };
 // "smooth", "linear"; std::nullopt for anything else.

@@ -1,6 +1,12 @@
 #include "render/framing.h"
 
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
 #include "io/frame_file.h"
+#include "io/run_file.h"
 #include "render/particle_spacing.h"
 #include "render/view_fit.h"
 
@@ -27,8 +33,44 @@ std::vector<std::string> reference_frame_candidates(const std::map<int, std::str
   return out;
 }
 
+TrackedBody tracked_body(const RenderSettings& settings, const std::string& run_path) {
+  TrackedBody track;
+  if (settings.camera_track.empty()) return track;
+  track.name = settings.camera_track;
+  if (run_path.empty())
+    fail_input("camera.track '{}': no run file beside the frames to find the body in; give --run", track.name);
+  const RunRecord run = read_run(run_path);
+  std::string names;
+  for (std::size_t b = 0; b < run.bodies.size(); ++b) {
+    if (run.bodies[b].name == track.name) {
+      track.id = static_cast<std::int32_t>(b);
+      track.reference_center = run.bodies[b].reference_center;
+      return track;
+    }
+    if (b < 8) names += (names.empty() ? "" : ", ") + run.bodies[b].name;
+  }
+  if (run.bodies.size() > 8) names += fmt::format(" and {} more", run.bodies.size() - 8);
+  fail_input("camera.track '{}': {} has no body of that name ({})", track.name, run_path,
+             names.empty() ? "it has no bodies" : "its bodies: " + names);
+}
+
+Camera frame_camera(const CameraPath& path, const TrackedBody& track, double time, const BodyStates& bodies,
+                    const std::string& frame) {
+  Camera c = path.at(time);
+  if (track.id >= 0) {
+    const auto row = std::find(bodies.id.begin(), bodies.id.end(), track.id);
+    if (row == bodies.id.end())
+      fail_input("{}: camera.track: the body '{}' is not in this frame (t = {:.6g} s): not made yet, or broken", frame,
+                 track.name, time);
+    c.target = bodies.position[static_cast<std::size_t>(row - bodies.id.begin())];
+  }
+  if (const std::string problem = camera_problem(c); !problem.empty())
+    fail_input("{}: the camera at t = {:.6g} s: {}", frame, time, problem);
+  return c;
+}
+
 Framing frame_sequence(const std::vector<std::string>& candidates, const RenderSettings& settings,
-                       const SolidScene& solids) {
+                       const SolidScene& solids, const TrackedBody& track) {
   Framing framing;
   FrameData reference = read_frame(candidates.front());
   framing.reference_frame = candidates.front();
@@ -68,6 +110,12 @@ Framing frame_sequence(const std::vector<std::string>& candidates, const RenderS
   const Occluders occluders(reference_solids);
   if (settings.camera) {
     framing.camera = settings.camera->at(reference.time);
+    if (track.id >= 0) {  // where the body is, or was made when it comes later
+      const auto row = std::find(reference.bodies.id.begin(), reference.bodies.id.end(), track.id);
+      framing.camera.target = row == reference.bodies.id.end()
+                                  ? track.reference_center
+                                  : reference.bodies.position[static_cast<std::size_t>(row - reference.bodies.id.begin())];
+    }
   } else {
     ViewFitInput fit;
     fit.solids = solid_box;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -17,6 +18,24 @@ namespace bw::render {
 // The frames among which the reference frame is chosen: the folder's first ones, in
 // order (not the range's, so that every part of a sequence agrees).
 std::vector<std::string> reference_frame_candidates(const std::map<int, std::string>& frames);
+
+// The body a camera tracks ([camera] track), as the run file names it.
+struct TrackedBody {
+  std::string name;
+  std::int32_t id = -1;                   // row of the run's /bodies; -1: no tracking
+  Vec3d reference_center = Vec3d::Zero(); // where it was made (c_ref)
+};
+
+// The body of settings.camera_track in the run file; id -1 when the settings track
+// none. Throws InputError when the run has no body of that name, or there is no run
+// file to say.
+TrackedBody tracked_body(const RenderSettings& settings, const std::string& run_path);
+
+// The camera of a frame: the scene's at the frame's time, looking at the tracked
+// body's centre in `bodies` when there is one. Throws InputError naming `frame` (a
+// path) when the body is not in the frame or the camera cannot be drawn.
+Camera frame_camera(const CameraPath& path, const TrackedBody& track, double time, const BodyStates& bodies,
+                    const std::string& frame);
 
 struct Framing {
   std::string reference_frame;   // the first candidate with enough particles (framing.cpp)
@@ -38,6 +57,6 @@ struct Framing {
 // Reads the candidates until one has enough particles. Throws InputError for a file
 // that cannot be read.
 Framing frame_sequence(const std::vector<std::string>& candidates, const RenderSettings& settings,
-                       const SolidScene& solids);
+                       const SolidScene& solids, const TrackedBody& track = {});
 
 }  // namespace bw::render

@@ -108,7 +108,7 @@ struct KeyValues {
 
 // [camera]: one camera, or keys over time ([[camera.key]]) whose missing values are
 // the table's own.
-CameraPath read_camera(const toml::table& t, const std::string& name) {
+CameraPath read_camera(const toml::table& t, const std::string& name, std::string& track) {
   KeyValues base;
   std::vector<KeyValues> keys;
   std::string interpolation = "smooth";
@@ -117,6 +117,10 @@ CameraPath read_camera(const toml::table& t, const std::string& name) {
   r.optional_vec3("target", base.target);
   r.optional_vec3("up", base.up);
   r.optional_number("fov", base.fov);
+  r.text("track", [&](const std::string& v) {
+    if (v.empty()) r.fail("track", "expected the name of a body");
+    track = v;
+  });
   r.text("interpolation", [&](const std::string& v) {
     if (!parse_camera_interpolation(v)) r.fail("interpolation", fmt::format("'{}' is not one of smooth, linear", v));
     interpolation = v;
@@ -137,6 +141,14 @@ CameraPath read_camera(const toml::table& t, const std::string& name) {
     }
   });
   r.read();
+  // A tracked body is the target: the camera's own would be a second answer.
+  if (!track.empty()) {
+    if (base.target) fail_input("{}: camera.target: not with camera.track, which aims the camera at the body", name);
+    for (std::size_t k = 0; k < keys.size(); ++k)
+      if (keys[k].target)
+        fail_input("{}: camera.key[{}].target: not with camera.track, which aims the camera at the body", name, k);
+    base.target = Vec3d::Zero();  // replaced in each frame by the body's centre
+  }
   if (keys.empty()) {
     if (!base.position || !base.target)
       fail_input("{}: camera.{}: required when a [camera] table is given", name, base.position ? "target" : "position");
@@ -159,7 +171,7 @@ CameraPath read_camera(const toml::table& t, const std::string& name) {
     c.target = v.target.value_or(base.target.value_or(Vec3d::Zero()));
     c.up = v.up.value_or(base.up.value_or(c.up));
     c.fov_degrees = v.fov.value_or(base.fov.value_or(c.fov_degrees));
-    if (const std::string problem = camera_problem(c); !problem.empty())
+    if (const std::string problem = camera_problem(c, track.empty()); !problem.empty())
       fail_input("{}: {}.{}", name, t.contains("key") ? key : std::string("camera"), problem);
     path.push_back({*v.time, c});
   }
@@ -168,10 +180,10 @@ CameraPath read_camera(const toml::table& t, const std::string& name) {
 
 // Every key, and the cameras between them: the path must be drawable throughout (the
 // frames' times are not known here; bw-render checks each frame's camera again).
-void check_camera_path(const CameraPath& path, const std::string& where) {
+void check_camera_path(const CameraPath& path, bool tracked, const std::string& where) {
   const auto& keys = path.keys();
   for (std::size_t k = 0; k < keys.size(); ++k) {
-    const std::string problem = camera_problem(keys[k].camera);
+    const std::string problem = camera_problem(keys[k].camera, !tracked);
     if (!problem.empty())
       fail_input("{}: {}.{}", where, path.animated() ? fmt::format("camera.key[{}]", k) : "camera", problem);
   }
@@ -179,7 +191,7 @@ void check_camera_path(const CameraPath& path, const std::string& where) {
   for (std::size_t k = 0; k + 1 < keys.size(); ++k)
     for (int i = 1; i < kSamples; ++i) {
       const double t = keys[k].time + (keys[k + 1].time - keys[k].time) * i / kSamples;
-      const std::string problem = camera_problem(path.at(t));
+      const std::string problem = camera_problem(path.at(t), !tracked);
       if (!problem.empty())
         fail_input("{}: camera.key[{}] to camera.key[{}]: at t = {:.6g} s, {}", where, k, k + 1, t, problem);
     }
@@ -219,7 +231,8 @@ void RenderSettings::validate(const std::string& where) const {
   check(width >= 1 && width <= kMaxImageSide, where, "render.width", fmt::format("{} is outside [1, {}]", width, kMaxImageSide));
   check(height >= 1 && height <= kMaxImageSide, where, "render.height",
         fmt::format("{} is outside [1, {}]", height, kMaxImageSide));
-  if (camera) check_camera_path(*camera, where);
+  if (camera) check_camera_path(*camera, !camera_track.empty(), where);
+  check(camera_track.empty() || camera, where, "camera.track", "needs a camera position");
   check(light.direction.norm() > 0, where, "light.direction", "is the zero vector");
   check(unit_color(light.color), where, "light.color", "components must lie in [0, 1]");
   check(light.intensity >= 0, where, "light.intensity", "must be >= 0");
@@ -264,7 +277,7 @@ RenderSettings parse_render_settings(const std::string& toml_text, const std::st
     return n->as_table();
   };
 
-  if (const toml::table* t = table("camera")) s.camera = read_camera(*t, name);
+  if (const toml::table* t = table("camera")) s.camera = read_camera(*t, name, s.camera_track);
   if (const toml::table* t = table("light")) {
     TableReader r(*t, name, "light");
     r.vec3("direction", s.light.direction);

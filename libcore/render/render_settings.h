@@ -44,6 +44,10 @@ struct RenderSettings {
   // The camera, fixed or moving over time; empty means "frame the scene" (see
   // fit_camera in camera.h).
   std::optional<CameraPath> camera;
+  // [camera] track: the name of a body (a dynamic or breakable solid, or a fragment,
+  // "plate.12") whose centre of mass the camera looks at in each frame; empty: the
+  // camera's own target.
+  std::string camera_track;
   Light light;
 
   // Particles are drawn as spheres of this radius (m). 0: particle_radius_factor

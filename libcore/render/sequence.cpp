@@ -136,18 +136,20 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
 
   // What must not change within a sequence, whichever part of it this process
   // renders: particle size, ground height, the fitted camera (framing.h).
-  report.framing = frame_sequence(plan.reference_frames, settings, solids);
+  const TrackedBody track = tracked_body(settings, plan.run_path);
+  report.framing = frame_sequence(plan.reference_frames, settings, solids, track);
   if (settings.camera) report.camera_keys = settings.camera->keys().size();
   const Framing& framing = report.framing;
   const double radius = framing.particle_radius, spacing = framing.particle_spacing;
 
-  // A moving camera is checked at every frame's time before anything is drawn.
+  // A moving or tracking camera is placed and checked at every frame before anything
+  // is drawn (a tracked body's centre from the frame's body states).
   std::vector<Camera> frame_cameras(plan.frames.size(), framing.camera);
-  if (settings.camera && settings.camera->animated())
+  if (settings.camera && (settings.camera->animated() || track.id >= 0))
     for (std::size_t i = 0; i < plan.frames.size(); ++i) {
-      frame_cameras[i] = settings.camera->at(plan.frames[i].time);
-      if (const std::string problem = camera_problem(frame_cameras[i]); !problem.empty())
-        fail_input("{}: the camera at t = {:.6g} s: {}", plan.frames[i].path, plan.frames[i].time, problem);
+      const FramePlan& f = plan.frames[i];
+      const BodyStates bodies = track.id >= 0 ? read_frame_header(f.path, true).bodies : BodyStates{};
+      frame_cameras[i] = frame_camera(*settings.camera, track, f.time, bodies, f.path);
     }
 
   std::unique_ptr<GlContext> context = GlContext::create(job.device);

@@ -760,6 +760,34 @@ int last_frame(double end, double frame_rate) {
   return static_cast<int>(std::floor(end * frame_rate + kSlack));
 }
 
+bool may_have_body(const Scene& s, const std::string& name) {
+  for (const Solid& solid : s.solids) {
+    if (!solid.body() && !solid.moving()) continue;
+    if (name == solid.name) return true;
+    if (!solid.breakable || name.rfind(solid.name + ".", 0) != 0) continue;
+    // The rest: numbers joined by dots, one per generation.
+    const std::string rest = name.substr(solid.name.size() + 1);
+    bool ok = true, digit_before = false;  // every dot follows a digit, and so does the end
+    for (char c : rest) {
+      if (c >= '0' && c <= '9') {
+        digit_before = true;
+      } else {
+        ok = ok && c == '.' && digit_before;
+        digit_before = false;
+      }
+    }
+    if (ok && digit_before) return true;
+  }
+  return false;
+}
+
+std::string body_names(const Scene& s) {
+  std::string names;
+  for (const Solid& solid : s.solids)
+    if (solid.body() || solid.moving()) names += (names.empty() ? "" : ", ") + solid.name;
+  return names;
+}
+
 void check_end_time(const Scene& s, double end, const std::string& what) {
   if (!std::isfinite(end) || end <= 0) fail_input("{}: {} is not a positive time (s)", what, end);
   if (end * s.time.frame_rate > kMaxFrames)

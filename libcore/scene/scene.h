@@ -171,6 +171,14 @@ int last_frame(double end, double frame_rate);
 // naming `what`, where the time came from.
 void check_end_time(const Scene& s, double end, const std::string& what);
 
+// Whether a run of `s` can have a body named `name`: a dynamic, breakable or moving
+// solid's own, or a fragment of a breakable one ("plate.12", "plate.12.3": its
+// parent's name, a dot and a number, as the fracture names them).
+bool may_have_body(const Scene& s, const std::string& name);
+
+// The names of the solids that are bodies, for messages ("crate, plate").
+std::string body_names(const Scene& s);
+
 // Reads and checks a scene file. Throws InputError "<path>: <key>: <problem>".
 // `overrides` ("KEY=VALUE", bw-sim --set; scene/overrides.h) replace keys of the file
 // before it is checked; Scene::text is then the effective scene as TOML, headed by a

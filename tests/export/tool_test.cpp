@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "export_fixture.h"
+#include "io/frame_file.h"
 #include "test_support.h"
 
 namespace bw {
@@ -120,6 +121,63 @@ TEST(ExportTool, TheScenesCameraGoesIntoTheGltf) {
   r = test::run(export_cmd(dir.file("frames") + " -o " + dir.file("left") + " --no-water --no-camera -q"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(test::file_bytes(dir.file("left/solids.glb")).find("\"cameras\""), std::string::npos);
+}
+
+// [camera] track: the camera looks at a body's centre in each frame, in bw-export's
+// glTF as in bw-render's images; a frame without the body (a fragment before its
+// fracture) is refused before anything is written.
+TEST(ExportTool, ATrackingCameraLooksAtTheBodyInEachFrame) {
+  test::TempDir dir;
+  const RunRecord run = test::write_export_run(dir.path());
+  std::ofstream(dir.file("track.toml")) << "[camera]\ntrack = \"u.1\"\nposition = [0.5, -3, 1.5]\nfov = 35\n";
+  const auto target_in = [&](int frame) {
+    const FrameData f = read_frame(frame_file_name(dir.file("frames"), frame));
+    for (std::size_t i = 0; i < f.bodies.size(); ++i)
+      if (run.bodies.at(static_cast<std::size_t>(f.bodies.id[i])).name == "u.1")
+        return fmt::format("0.5,-3,1.5:{:g},{:g},{:g}:35", f.bodies.position[i].x(), f.bodies.position[i].y(),
+                           f.bodies.position[i].z());
+    return std::string("(no u.1)");
+  };
+  const std::string scene = " --scene " + dir.file("track.toml");
+  auto r = test::run(export_cmd(dir.file("frames") + " -o " + dir.file("e") + " --no-water --frames 1:2 -v" + scene));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("fixed, looking at body 'u.1'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("at frame 1    " + target_in(1) + " "), std::string::npos) << target_in(1) << "\n" << r.err;
+  // The camera node, after the bodies' (none static), is keyed: the body moves.
+  const std::size_t nodes_at = r.err.find("0 static, ");
+  ASSERT_NE(nodes_at, std::string::npos) << r.err;
+  const int camera_node = std::stoi(r.err.substr(nodes_at + 10));
+  EXPECT_NE(test::file_bytes(dir.file("e/solids.glb"))
+                .find(fmt::format("\"target\":{{\"node\":{},\"path\":\"rotation\"}}", camera_node)),
+            std::string::npos);
+
+  r = test::run(export_cmd(dir.file("frames") + " -o " + dir.file("all") + " --no-water" + scene));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(test::line_count(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("000000.h5: camera.track: the body 'u.1' is not in this frame (t = 0 s)"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(test::exists(dir.file("all/solids.glb")));
+  // bw-info lists the names to track.
+  const auto info = test::run(test::tool("bw-info") + " " + dir.file("run.h5"));
+  EXPECT_NE(info.out.find("bodies_names: u, u.0, u.1"), std::string::npos) << info.out;
+  std::ofstream(dir.file("other.toml")) << "[camera]\ntrack = \"crate\"\nposition = [0.5, -3, 1.5]\n";
+  r = test::run(export_cmd(dir.file("frames") + " -o " + dir.file("other") + " --no-water --scene " + dir.file("other.toml")));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("camera.track 'crate': " + dir.file("run.h5") + " has no body of that name (its bodies: u, u.0, u.1"),
+            std::string::npos)
+      << r.err;
+#ifdef BW_TEST_WITH_RENDER
+  r = test::run(test::tool("bw-render") + " " + dir.file("frames") + " -o " + dir.file("images") + " --frames 1:2" +
+                scene + " --width 64 --height 48");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (int f : {1, 2})
+    EXPECT_NE(test::file_bytes(dir.file(fmt::format("images/{:06d}.png", f))).find("camera " + target_in(f) + " "),
+              std::string::npos)
+        << target_in(f);
+  r = test::run(test::tool("bw-render") + " " + dir.file("frames") + " -o " + dir.file("refused") + " --frames 0" + scene);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("camera.track: the body 'u.1' is not in this frame"), std::string::npos) << r.err;
+#endif
 }
 
 TEST(ExportTool, WithoutARunTheSpacingIsNeeded) {

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <functional>
 
+#include "io/frame_file.h"
 #include "render/camera_path.h"
+#include "render/framing.h"
 #include "render/render_settings.h"
 #include "test_support.h"
 
@@ -118,6 +120,43 @@ fov = 30
   EXPECT_EQ(path.keys()[1].camera.fov_degrees, 30);
   EXPECT_EQ(path.keys()[1].camera.up, Vec3d(0, 0, 1));
   EXPECT_NEAR(path.at(0.5).fov_degrees, 35, 1e-12);
+}
+
+// With track, the target is a body's centre, frame by frame: the scene gives none.
+TEST(CameraPath, ATrackedBodyIsTheTarget) {
+  const auto s = br::parse_render_settings(
+      "[camera]\ntrack = \"crate\"\n[[camera.key]]\ntime = 0\nposition = [0, -2, 1]\n"
+      "[[camera.key]]\ntime = 1\nposition = [0, 0, 3]\n",  // passes over the origin looking down: fine, no target yet
+      "s.toml");
+  EXPECT_EQ(s.camera_track, "crate");
+  ASSERT_TRUE(s.camera);
+  EXPECT_TRUE(s.camera->animated());
+  const auto error = [](const std::string& text) { return error_of([&] { br::parse_render_settings(text, "s.toml"); }); };
+  EXPECT_EQ(error("[camera]\ntrack = \"crate\"\nposition = [0, -2, 1]\ntarget = [0, 0, 0]\n"),
+            "s.toml: camera.target: not with camera.track, which aims the camera at the body");
+  EXPECT_EQ(error("[camera]\ntrack = \"crate\"\n[[camera.key]]\ntime = 0\nposition = [0, -2, 1]\ntarget = [0, 0, 0]\n"),
+            "s.toml: camera.key[0].target: not with camera.track, which aims the camera at the body");
+  EXPECT_EQ(error("[camera]\ntrack = \"\"\nposition = [0, -2, 1]\n"), "s.toml: camera.track: expected the name of a body");
+  EXPECT_EQ(error("[camera]\ntrack = \"crate\"\n"),
+            "s.toml: camera.position: required when a [camera] table is given");
+
+  // In a frame: the body's centre is the target; a frame without it is refused.
+  br::TrackedBody crate{"crate", 3, Vec3d(0, 0, 0)};
+  bw::BodyStates bodies;
+  bodies.id = {1, 3};
+  bodies.position = {Vec3d(9, 9, 9), Vec3d(0.5, 0.2, 0.1)};
+  bodies.orientation.resize(2);
+  const br::Camera c = br::frame_camera(*s.camera, crate, 0.5, bodies, "f.h5");
+  EXPECT_EQ(c.target, Vec3d(0.5, 0.2, 0.1));
+  EXPECT_EQ(c.position, s.camera->at(0.5).position);
+  bodies.id = {1, 2};
+  EXPECT_EQ(error_of([&] { br::frame_camera(*s.camera, crate, 0.5, bodies, "f.h5"); }),
+            "f.h5: camera.track: the body 'crate' is not in this frame (t = 0.5 s): not made yet, or broken");
+  // Straight above its target, looking down along up: refused in that frame.
+  bodies.id = {3, 2};
+  bodies.position = {Vec3d(0, 0, 0), Vec3d(9, 9, 9)};
+  EXPECT_EQ(error_of([&] { br::frame_camera(*s.camera, crate, 1.0, bodies, "f.h5"); }),
+            "f.h5: the camera at t = 1 s: up: is parallel to the viewing direction");
 }
 
 TEST(CameraPath, BadKeysAreNamed) {

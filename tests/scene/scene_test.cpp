@@ -316,6 +316,19 @@ max_chunks = 12
                                      "[[solid]]\nparticles = \"wall.h5\"\nbreakable = true\n")));
 }
 
+// The names a run of the scene may give its bodies: bodies' solids, and fragments of
+// breakable ones as the fracture names them; static solids are no bodies.
+TEST(Scene, NamesOfTheBodiesARunMayHave) {
+  SceneFolder f;
+  const Scene s = load_scene(f.write(kMinimal + "[[solid]]\nparticles = \"wall.h5\"\nname = \"plate\"\nbreakable = true\n"
+                                                "[[solid]]\nparticles = \"wall.h5\"\nname = \"crate\"\ndynamic = true\n"
+                                                "density = 500\n[[solid]]\nparticles = \"wall.h5\"\nname = \"tank\"\n"));
+  for (const char* name : {"plate", "crate", "plate.12", "plate.3.0"}) EXPECT_TRUE(may_have_body(s, name)) << name;
+  for (const char* name : {"tank", "crate.1", "plate.", "plate.x", "plate..1", "plate.1.", "plat", ""})
+    EXPECT_FALSE(may_have_body(s, name)) << name;
+  EXPECT_EQ(body_names(s), "plate, crate");
+}
+
 TEST(SceneErrors, BreakableKeys) {
   SceneFolder f;
   const std::string solid = kMinimal + "[[solid]]\nparticles = \"wall.h5\"\n";

@@ -352,6 +352,8 @@ TEST(BwSim, BadInputsExitWithTwoAndWriteNothing) {
   expect_bad_input(kGood + "[camera]\ntarget = [0, 0, 0]\n[[camera.key]]\ntime = 0.2\nposition = [0, -1, 1]\n"
                            "[[camera.key]]\ntime = 0.1\nposition = [1, -1, 1]\n",
                    "scene.toml: camera.key[1].time: 0.1 is not after camera.key[0].time = 0.2");
+  expect_bad_input(kGood + "[camera]\ntrack = \"crate\"\nposition = [0, -1, 1]\n",
+                   "scene.toml: camera.track: 'crate' is not a body of the scene (it has none:");
   expect_bad_input(kGood, "scene.toml: light.intensity: must be >= 0", "--set light.intensity=-1");
   expect_bad_input(kGood, "--device: 'fastest'", "--device fastest");
   expect_bad_input(kGood, "--device 99", "--device 99");

@@ -71,8 +71,9 @@ void print_summary(const Options& o, const bw::exporter::ExportReport& r) {
     std::fprintf(stderr, "  solids       %s: %zu static, %zu bodies, %zu triangles, %s\n", r.gltf_path.c_str(),
                  r.gltf.static_nodes, r.gltf.body_nodes, r.gltf.triangles, bw::human_bytes(r.gltf.bytes).c_str());
     if (r.gltf.camera) {
-      std::fprintf(stderr, "  camera       from %s, %s\n", r.camera_source.c_str(),
-                   r.camera_keys > 1 ? fmt::format("moving ({} keys)", r.camera_keys).c_str() : "fixed");
+      std::fprintf(stderr, "  camera       from %s, %s%s\n", r.camera_source.c_str(),
+                   r.camera_keys > 1 ? fmt::format("moving ({} keys)", r.camera_keys).c_str() : "fixed",
+                   r.camera_track.empty() ? "" : fmt::format(", looking at body '{}'", r.camera_track).c_str());
       const auto& c = r.gltf.camera_first;
       if (o.verbose)
         std::fprintf(stderr, "  at frame %-5d%g,%g,%g:%g,%g,%g:%g (as bw-render --camera takes it)\n", r.first,

@@ -54,7 +54,10 @@ struct Options {
     }
     if (width) j.settings.width = *width;
     if (height) j.settings.height = *height;
-    if (!camera.empty()) j.settings.camera = bw::render::CameraPath::fixed(bw::render::parse_camera(camera));
+    if (!camera.empty()) {  // the whole camera: its target too
+      j.settings.camera = bw::render::CameraPath::fixed(bw::render::parse_camera(camera));
+      j.settings.camera_track.clear();
+    }
     if (!filter.empty()) j.settings.filter = *bw::render::parse_filter(filter);
     j.settings.view = *bw::render::parse_view(view);
     if (radius > 0) j.settings.particle_radius = radius;
@@ -88,6 +91,8 @@ void print_summary(const Options& o, const bw::render::SequenceJob& job, const s
   std::fprintf(stderr, "  camera       %g,%g,%g:%g,%g,%g:%g%s\n", c.position.x(), c.position.y(), c.position.z(),
                c.target.x(), c.target.y(), c.target.z(), c.fov_degrees,
                f.camera_fitted ? " (fitted)" : r.camera_keys > 1 ? " (at the reference frame)" : "");
+  if (!s.camera_track.empty())
+    std::fprintf(stderr, "  tracking     the centre of body '%s' in each frame\n", s.camera_track.c_str());
   if (s.camera && s.camera->animated()) {
     const auto& keys = s.camera->keys();
     std::fprintf(stderr, "  moving       %zu keys from t = %g to %g s, %s\n", keys.size(), keys.front().time,

@@ -125,7 +125,13 @@ int main(int argc, char** argv) {
     } else {
       scene = bw::scene::load_scene(o.scene, o.overrides);
       // bw-render's tables too, so that a long run does not end in a scene it cannot draw.
-      bw::render::parse_render_settings(scene.text, scene.path);
+      const bw::render::RenderSettings look = bw::render::parse_render_settings(scene.text, scene.path);
+      if (!look.camera_track.empty() && !bw::scene::may_have_body(scene, look.camera_track)) {
+        const std::string bodies = bw::scene::body_names(scene);
+        bw::fail_input("{}: camera.track: '{}' is not a body of the scene ({})", scene.path, look.camera_track,
+                       bodies.empty() ? "it has none: dynamic, breakable and moving solids are bodies"
+                                      : "its bodies: " + bodies + ", and the fragments of breakable ones, 'NAME.N'");
+      }
       device = bw::compute::choose_device(o.device.empty() ? "auto" : o.device);
     }
     bw::sim::Simulation simulation(scene, device, options);
