@@ -82,12 +82,16 @@ ExportPlan plan_export(const ExportJob& job) {
   if (plan.solids && job.camera) {
     // The camera bw-render draws with: [camera] of the run's scene or of --scene.
     render::RenderSettings look;
-    if (!job.scene_path.empty()) {
-      look = render::load_render_settings(job.scene_path);
-      plan.camera_source = job.scene_path;
-    } else if (!run.scene_text.empty()) {
-      look = render::parse_render_settings(run.scene_text, plan.run_path + ": scene");
-      plan.camera_source = "the scene of " + plan.run_path;
+    try {
+      if (!job.scene_path.empty()) {
+        look = render::load_render_settings(job.scene_path);
+        plan.camera_source = job.scene_path;
+      } else if (!run.scene_text.empty()) {
+        look = render::parse_render_settings(run.scene_text, plan.run_path + ": scene");
+        plan.camera_source = "the scene of " + plan.run_path;
+      }
+    } catch (const InputError& e) {
+      fail_input("{} (the camera of solids.glb comes from it; --no-camera leaves it out)", e.what());
     }
     const double aspect = static_cast<double>(look.width) / look.height;
     if (look.camera) {

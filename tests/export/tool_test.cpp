@@ -64,7 +64,8 @@ TEST(ExportTool, BadInputsWriteNothing) {
       {dir.file("frames") + out + " --fragments " + dir.file("u.h5"), "u.h5: is a 'particles' file, expected a 'fragments' file"},
       {dir.file("frames") + out + " --run " + dir.file("frames/000000.h5"), "000000.h5: is a 'frame' file, expected a 'run' file"},
       {dir.file("frames") + out + " --scene " + dir.file("bad.toml"),
-       "bad.toml: camera.key[1].time: 0 is not after camera.key[0].time = 1"},
+       "bad.toml: camera.key[1].time: 0 is not after camera.key[0].time = 1 (the camera of solids.glb comes from it; "
+       "--no-camera leaves it out)"},
       {dir.file("frames") + out + " --scene " + dir.file("missing.toml"), "missing.toml"},
       {dir.file("frames") + out + " --scene " + dir.file("bad.toml") + " --no-solids",
        "its camera goes into solids.glb, which --no-solids leaves out"},
