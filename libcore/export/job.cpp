@@ -102,13 +102,7 @@ ExportPlan plan_export(const ExportJob& job) {
           render::frame_camera(plan.camera->path, plan.camera->track, f.time, read_frame_header(f.path, true).bodies,
                                f.path);
     } else {
-      // No [camera]: the one bw-render fits to the reference frame, from the same
-      // frames, solids and look, so Blender sees what the images show.
-      const render::SolidScene scene = render::SolidScene::load({plan.run_path, plan.fragments_path}, {});
-      const render::Framing framing = render::frame_sequence(
-          render::reference_frame_candidates(require_frame_files(job.frames_dir)), look, scene);
-      plan.camera = GltfCamera{render::CameraPath::fixed(framing.camera), aspect};
-      plan.camera_source = fmt::format("the fit to {} (as bw-render's)", framing.reference_frame);
+      plan.camera_fit = look;  // fitted by run_export, from the solids it reads
     }
   }
 
@@ -131,15 +125,28 @@ ExportReport run_export(const ExportJob& job, const std::function<void(const Exp
   report.last = plan.frames.back().number;
   report.water_options = plan.water_options;
   report.spacing_source = plan.spacing_source;
-  if (plan.camera) {
-    report.camera_keys = plan.camera->path.keys().size();
-    report.camera_track = plan.camera->track.name;
-  }
 
   // Inputs of the glTF are read before any file is written, so that a bad run or
   // fragments file leaves nothing behind.
   SolidSet solids;
   if (plan.solids) solids = SolidSet::load(plan.run_path, plan.fragments_path);
+  std::optional<GltfCamera> camera = plan.camera;
+  report.camera_source = plan.camera_source;
+  if (plan.camera_fit) {
+    // No [camera]: the one bw-render fits to the reference frame, from the same
+    // frames, solids and look, so Blender sees what the images show.
+    const render::SolidScene scene = render::SolidScene::from(solids.run, solids.solid_meshes, solids.fragments,
+                                                              {plan.run_path, plan.fragments_path}, {});
+    const render::Framing framing = render::frame_sequence(
+        render::reference_frame_candidates(require_frame_files(job.frames_dir)), *plan.camera_fit, scene);
+    camera = GltfCamera{render::CameraPath::fixed(framing.camera),
+                        static_cast<double>(plan.camera_fit->width) / plan.camera_fit->height};
+    report.camera_source = fmt::format("the fit to {} (as bw-render's)", framing.reference_frame);
+  }
+  if (camera) {
+    report.camera_keys = camera->path.keys().size();
+    report.camera_track = camera->track.name;
+  }
 
   std::vector<PoseFrame> poses;
   double water_seconds = 0;
@@ -168,8 +175,7 @@ ExportReport run_export(const ExportJob& job, const std::function<void(const Exp
   if (plan.solids) {
     report.gltf_path = job.output_dir + "/solids.glb";
     const std::vector<std::uint8_t> glb =
-        build_glb(solids, poses, plan.run_path, &report.gltf, plan.camera ? &*plan.camera : nullptr);
-    report.camera_source = plan.camera_source;
+        build_glb(solids, poses, plan.run_path, &report.gltf, camera ? &*camera : nullptr);
     write_file_atomically(report.gltf_path, glb.data(), glb.size());
   }
   report.seconds = clock.seconds();

@@ -15,6 +15,7 @@
 #include "export/frames.h"
 #include "export/gltf.h"
 #include "export/water.h"
+#include "render/render_settings.h"
 
 namespace bw::exporter {
 
@@ -42,6 +43,9 @@ struct ExportPlan {
   bool solids = false;                   // a solids.glb will be written
   std::optional<GltfCamera> camera;      // the scene's camera, when solids.glb gets one
   std::string camera_source;             // the scene it came from
+  // Without a [camera]: the look that bw-render fits its camera with, to fit the same
+  // one from the solids run_export reads.
+  std::optional<render::RenderSettings> camera_fit;
   std::string spacing_source;            // where the spacing came from
 };
 ExportPlan plan_export(const ExportJob& job);

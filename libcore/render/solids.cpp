@@ -47,38 +47,44 @@ Aabb TriangleSoup::bounds() const {
 }
 
 SolidScene SolidScene::load(const SolidSources& sources, const SolidColors& colors) {
+  RunRecord run;
+  std::vector<TriMesh> meshes;
+  if (!sources.run_path.empty()) {
+    run = read_run(sources.run_path);
+    meshes = reference_meshes(run, sources.run_path);
+  }
+  FragmentSet fragments;
+  if (!sources.fragments_path.empty()) fragments = read_fragments(sources.fragments_path);
+  return from(run, std::move(meshes), std::move(fragments), sources, colors);
+}
+
+SolidScene SolidScene::from(const RunRecord& run, std::vector<TriMesh> solid_meshes, FragmentSet fragments,
+                            const SolidSources& sources, const SolidColors& colors) {
   SolidScene scene;
   scene.colors_ = colors;
-  if (!sources.run_path.empty()) {
-    const RunRecord run = read_run(sources.run_path);
-    std::vector<TriMesh> meshes = reference_meshes(run, sources.run_path);
-    for (std::size_t s = 0; s < run.solids.size(); ++s) {
-      const SolidRecord& r = run.solids[s];
-      Part part;
-      part.mesh = std::move(meshes[s]);
-      part.body = r.body;
-      part.is_static = r.body < 0;
-      if (r.body >= static_cast<std::int32_t>(run.bodies.size()))
-        fail_input("{}: solid {} ('{}') names body {}, the run has {} bodies", sources.run_path, s, r.name, r.body,
-                   run.bodies.size());
-      scene.solids_.push_back(std::move(part));
-    }
-    for (const BodyRecord& b : run.bodies) scene.body_centers_.push_back(b.reference_center);
+  for (std::size_t s = 0; s < run.solids.size(); ++s) {
+    const SolidRecord& r = run.solids[s];
+    Part part;
+    part.mesh = std::move(solid_meshes.at(s));
+    part.body = r.body;
+    part.is_static = r.body < 0;
+    if (r.body >= static_cast<std::int32_t>(run.bodies.size()))
+      fail_input("{}: solid {} ('{}') names body {}, the run has {} bodies", sources.run_path, s, r.name, r.body,
+                 run.bodies.size());
+    scene.solids_.push_back(std::move(part));
   }
-  if (!sources.fragments_path.empty()) {
-    FragmentSet set = read_fragments(sources.fragments_path);
-    for (std::size_t f = 0; f < set.fragments.size(); ++f) {
-      Fragment& fragment = set.fragments[f];
-      if (fragment.body >= 0 && static_cast<std::size_t>(fragment.body) >= scene.body_centers_.size())
-        fail_input("{}: fragment {} belongs to body {}, but {} has {} bodies", sources.fragments_path, f,
-                   fragment.body, sources.run_path.empty() ? "there is no run file, which" : sources.run_path,
-                   scene.body_centers_.size());
-      Part part;
-      part.mesh = std::move(fragment.mesh);
-      part.body = fragment.body;
-      part.is_static = false;
-      scene.fragments_.push_back(std::move(part));
-    }
+  for (const BodyRecord& b : run.bodies) scene.body_centers_.push_back(b.reference_center);
+  for (std::size_t f = 0; f < fragments.fragments.size(); ++f) {
+    Fragment& fragment = fragments.fragments[f];
+    if (fragment.body >= 0 && static_cast<std::size_t>(fragment.body) >= scene.body_centers_.size())
+      fail_input("{}: fragment {} belongs to body {}, but {} has {} bodies", sources.fragments_path, f, fragment.body,
+                 sources.run_path.empty() ? "there is no run file, which" : sources.run_path,
+                 scene.body_centers_.size());
+    Part part;
+    part.mesh = std::move(fragment.mesh);
+    part.body = fragment.body;
+    part.is_static = false;
+    scene.fragments_.push_back(std::move(part));
   }
   return scene;
 }

@@ -17,7 +17,9 @@
 #include <vector>
 
 #include "common/geometry.h"
+#include "io/fragments_file.h"
 #include "io/frame_file.h"
+#include "io/run_file.h"
 
 namespace bw::render {
 
@@ -45,6 +47,11 @@ class SolidScene {
   // Reads the run file, the particle files it names (each once) and the fragments
   // file. Throws InputError naming the file at fault.
   static SolidScene load(const SolidSources& sources, const SolidColors& colors);
+  // The same from what a caller has read already: the run, its solids' meshes in the
+  // reference configuration (reference_meshes, run_file.h) and the fragments (none:
+  // an empty set). `sources` names the files in messages.
+  static SolidScene from(const RunRecord& run, std::vector<TriMesh> solid_meshes, FragmentSet fragments,
+                         const SolidSources& sources, const SolidColors& colors);
 
   // The triangles of every solid at the given body states. `missing` (optional)
   // receives the number of bodies of the frame that have no mesh to draw (fragments
