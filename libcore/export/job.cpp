@@ -96,11 +96,13 @@ ExportPlan plan_export(const ExportJob& job) {
     const double aspect = static_cast<double>(look.width) / look.height;
     if (look.camera) {
       plan.camera = GltfCamera{*look.camera, aspect, render::tracked_body(look, plan.run_path)};
-      // A tracked body must be in every frame: checked before anything is written.
-      if (plan.camera->track.id >= 0)
+      // A moving camera is drawable, and a tracked body there, in every frame: checked
+      // before anything is written.
+      const GltfCamera& c = *plan.camera;
+      if (c.path.animated() || c.track.id >= 0)
         for (const FrameRef& f : plan.frames)
-          render::frame_camera(plan.camera->path, plan.camera->track, f.time, read_frame_header(f.path, true).bodies,
-                               f.path);
+          render::frame_camera(c.path, c.track, f.time,
+                               c.track.id >= 0 ? read_frame_header(f.path, true).bodies : BodyStates{}, f.path);
     } else {
       plan.camera_fit = look;  // fitted by run_export, from the solids it reads
     }

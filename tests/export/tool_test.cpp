@@ -67,10 +67,16 @@ TEST(ExportTool, BadInputsWriteNothing) {
        "bad.toml: camera.key[1].time: 0 is not after camera.key[0].time = 1 (the camera of solids.glb comes from it; "
        "--no-camera leaves it out)"},
       {dir.file("frames") + out + " --scene " + dir.file("missing.toml"), "missing.toml"},
+      // Drawable at every sampled point, but looking down along up at frame 1's time (t = 0.05 s).
+      {dir.file("frames") + out + " --scene " + dir.file("down.toml"),
+       "000001.h5: the camera at t = 0.05 s: up: is parallel to the viewing direction"},
       {dir.file("frames") + out + " --scene " + dir.file("bad.toml") + " --no-solids",
        "its camera goes into solids.glb, which --no-solids leaves out"},
       {dir.file("frames") + out + " --scene " + dir.file("bad.toml") + " --no-camera", "excludes"},
   };
+  std::ofstream(dir.file("down.toml")) << "[camera]\ntarget = [0, 0, 0.5]\ninterpolation = \"linear\"\n"
+                                          "[[camera.key]]\ntime = 0\nposition = [-1, 0, 1.5]\n"
+                                          "[[camera.key]]\ntime = 0.15\nposition = [2, 0, 1.5]\n";
   std::ofstream(dir.file("bad.toml")) << "[camera]\ntarget = [0, 0, 0]\n[[camera.key]]\ntime = 1\nposition = [0, -1, 1]\n"
                                          "[[camera.key]]\ntime = 0\nposition = [1, -1, 1]\n";
   for (const Case& c : cases) {
