@@ -214,6 +214,15 @@ std::vector<std::uint8_t> build_glb(const SolidSet& solids, const std::vector<Po
     for (const PoseFrame& f : frames) t.push_back(static_cast<float>(f.time));
     times = buffer.add_floats(t, "SCALAR", 1, true);
   }
+  // One animation channel of a node: values at the frames' times.
+  auto add_channel = [&](int node, const std::vector<float>& values, const char* type, int components,
+                         const char* path, const char* interpolation) {
+    const int output = buffer.add_floats(values, type, components, false);
+    samplers.push_back(
+        fmt::format("{{\"input\":{},\"output\":{},\"interpolation\":\"{}\"}}", times, output, interpolation));
+    channels.push_back(fmt::format("{{\"sampler\":{},\"target\":{{\"node\":{},\"path\":\"{}\"}}}}",
+                                   samplers.size() - 1, node, path));
+  };
   for (std::size_t b = 0; b < bodies; ++b) {
     const BodyRecord& body = run.bodies[b];
     const auto& p = poses[b];
@@ -259,17 +268,9 @@ std::vector<std::uint8_t> build_glb(const SolidSet& solids, const std::vector<Po
       if (!p[k]) visible_changes = true;
     }
     const auto node = static_cast<int>(nodes.size());
-    auto channel = [&](const std::vector<float>& values, const char* type, int components, const char* path,
-                       const char* interpolation) {
-      const int output = buffer.add_floats(values, type, components, false);
-      samplers.push_back(
-          fmt::format("{{\"input\":{},\"output\":{},\"interpolation\":\"{}\"}}", times, output, interpolation));
-      channels.push_back(fmt::format("{{\"sampler\":{},\"target\":{{\"node\":{},\"path\":\"{}\"}}}}",
-                                     samplers.size() - 1, node, path));
-    };
-    channel(translation, "VEC3", 3, "translation", "LINEAR");
-    channel(rotation, "VEC4", 4, "rotation", "LINEAR");
-    if (visible_changes) channel(scale, "VEC3", 3, "scale", "STEP");
+    add_channel(node, translation, "VEC3", 3, "translation", "LINEAR");
+    add_channel(node, rotation, "VEC4", 4, "rotation", "LINEAR");
+    if (visible_changes) add_channel(node, scale, "VEC3", 3, "scale", "STEP");
     stats.keyframes += frames.size();
     // The node's own transform is its first frame's, for viewers that show no animation.
     const Vec3d t0 = to_gltf(p[*first_seen]->position);
@@ -329,13 +330,8 @@ std::vector<std::uint8_t> build_glb(const SolidSet& solids, const std::vector<Po
         for (int k = 0; k < 3; ++k) translation.push_back(static_cast<float>(t[k]));
         for (double v : r) rotation.push_back(static_cast<float>(v));
       }
-      for (auto [values, type, components, path] :
-           {std::tuple{&translation, "VEC3", 3, "translation"}, std::tuple{&rotation, "VEC4", 4, "rotation"}}) {
-        const int output = buffer.add_floats(*values, type, components, false);
-        samplers.push_back(fmt::format("{{\"input\":{},\"output\":{},\"interpolation\":\"LINEAR\"}}", times, output));
-        channels.push_back(fmt::format("{{\"sampler\":{},\"target\":{{\"node\":{},\"path\":\"{}\"}}}}",
-                                       samplers.size() - 1, node, path));
-      }
+      add_channel(node, translation, "VEC3", 3, "translation", "LINEAR");
+      add_channel(node, rotation, "VEC4", 4, "rotation", "LINEAR");
       stats.keyframes += keys.size();
     }
     const Vec3d t0 = to_gltf(keys.front().position);
