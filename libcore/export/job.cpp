@@ -11,6 +11,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/terminal.h"
+#include "export/blender_scene.h"
 #include "io/frame_file.h"
 #include "io/run_file.h"
 #include "mesh/import.h"
@@ -25,6 +26,15 @@ std::string beside_frames(const std::string& frames_dir, const char* name) {
   std::error_code ec;
   const fs::path guess = fs::path(frames_dir) / ".." / name;
   return fs::exists(guess, ec) ? guess.lexically_normal().string() : std::string();
+}
+
+// Frames per second: the run's, or else what the frames' numbers and times say.
+double frame_rate_of(const RunRecord& run, const std::vector<FrameRef>& frames) {
+  for (const auto& [name, value] : run.parameters)
+    if (name == "frame_rate" && value > 0 && std::isfinite(value)) return value;
+  for (auto f = frames.rbegin(); f != frames.rend(); ++f)
+    if (f->number > 0 && f->time > 0) return f->number / f->time;
+  return 30;  // one frame at time 0: any rate shows it
 }
 
 }  // namespace
@@ -76,23 +86,28 @@ ExportPlan plan_export(const ExportJob& job) {
   if (!job.run_path.empty() && job.solids && run.solids.empty() && !job.water)
     fail_input("{}: the run has no solids to export", job.run_path);
 
-  if (!job.scene_path.empty() && !plan.solids)
-    fail_input("--scene {}: its camera goes into solids.glb, which {}", job.scene_path,
-               job.solids ? "this run does not get (it has no solids)" : "--no-solids leaves out");
-  if (plan.solids && job.camera) {
-    // The camera bw-render draws with: [camera] of the run's scene or of --scene.
-    render::RenderSettings look;
+  // blender_scene.py comes with solids.glb, and without solids with the water alone.
+  plan.blender_script = job.solids;
+  if (!job.scene_path.empty() && !job.solids)
+    fail_input("--scene {}: its camera and look go into solids.glb and blender_scene.py, which --no-solids leaves out",
+               job.scene_path);
+  if (job.solids) {
+    // The look bw-render draws with: [camera], [light] and [render] of the run's scene or of --scene.
     try {
       if (!job.scene_path.empty()) {
-        look = render::load_render_settings(job.scene_path);
+        plan.look = render::load_render_settings(job.scene_path);
         plan.camera_source = job.scene_path;
       } else if (!run.scene_text.empty()) {
-        look = render::parse_render_settings(run.scene_text, plan.run_path + ": scene");
+        plan.look = render::parse_render_settings(run.scene_text, plan.run_path + ": scene");
         plan.camera_source = "the scene of " + plan.run_path;
       }
     } catch (const InputError& e) {
-      fail_input("{} (the camera of solids.glb comes from it; --no-camera leaves it out)", e.what());
+      fail_input("{} (the camera of solids.glb and the look of blender_scene.py come from it)", e.what());
     }
+  }
+  plan.frame_rate = frame_rate_of(run, plan.frames);
+  if (plan.solids && job.camera) {
+    const render::RenderSettings& look = plan.look;
     const double aspect = static_cast<double>(look.width) / look.height;
     if (look.camera) {
       plan.camera = GltfCamera{*look.camera, aspect, render::tracked_body(look, plan.run_path)};
@@ -179,6 +194,12 @@ ExportReport run_export(const ExportJob& job, const std::function<void(const Exp
     const std::vector<std::uint8_t> glb =
         build_glb(solids, poses, plan.run_path, &report.gltf, camera ? &*camera : nullptr);
     write_file_atomically(report.gltf_path, glb.data(), glb.size());
+  }
+  if (plan.blender_script) {
+    report.blender_script_path = job.output_dir + "/blender_scene.py";
+    const std::string script = blender_scene_script(
+        {plan.run_path, plan.frame_rate, report.first, report.last, job.water_options.up, plan.look});
+    write_file_atomically(report.blender_script_path, script.data(), script.size());
   }
   report.seconds = clock.seconds();
   return report;

@@ -5,6 +5,7 @@
 //                              fog volume "density" when asked), water.h
 //   OUT_DIR/water_NNNNNN.obj   (or .ply) its surface as triangles, when asked
 //   OUT_DIR/solids.glb         every solid and body, animated over the range, gltf.h
+//   OUT_DIR/blender_scene.py   sets up a Blender scene from those files, blender_scene.h
 #pragma once
 
 #include <functional>
@@ -29,7 +30,7 @@ struct ExportJob {
   bool density = false;          // a "density" fog grid beside "surface"
   std::string mesh_format;       // "", "obj" or "ply": the surface as a mesh too
   double mesh_adaptivity = 0;
-  bool solids = true;            // solids.glb (when the run has solids)
+  bool solids = true;            // solids.glb (when the run has solids) and blender_scene.py
   bool camera = true;            // the scene's [camera] in solids.glb, when it has one
   std::string scene_path;        // empty: the run's scene, as the run file keeps it
   WaterOptions water_options;    // spacing 0: the run's /parameters/spacing
@@ -41,6 +42,9 @@ struct ExportPlan {
   std::string run_path, fragments_path;  // resolved; empty when none
   WaterOptions water_options;            // resolved
   bool solids = false;                   // a solids.glb will be written
+  bool blender_script = false;           // and blender_scene.py
+  render::RenderSettings look;           // the scene's [camera], [light], [render] (defaults without one)
+  double frame_rate = 30;                // the run's frames per second
   std::optional<GltfCamera> camera;      // the scene's camera, when solids.glb gets one
   std::string camera_source;             // the scene it came from
   // Without a [camera]: the look that bw-render fits its camera with, to fit the same
@@ -69,6 +73,7 @@ struct ExportReport {
   std::string camera_source;       // where solids.glb's camera came from (gltf.camera)
   std::size_t camera_keys = 0;     // its keys in the scene (1: fixed)
   std::string camera_track;        // the body it looks at; empty: none
+  std::string blender_script_path; // empty: not written
 };
 
 // Writes the files (each through a temporary name). Throws InputError for bad input,

@@ -19,8 +19,8 @@ TEST(ExportTool, WritesWaterPerFrameAndOneGltf) {
   const auto r = test::run(export_cmd(dir.file("frames") + " -o " + dir.file("out") + " --mesh ply -v"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(test::list_folder(dir.file("out")),
-            "solids.glb water_000000.ply water_000000.vdb water_000001.ply water_000001.vdb water_000002.ply "
-            "water_000002.vdb");
+            "blender_scene.py solids.glb water_000000.ply water_000000.vdb water_000001.ply water_000001.vdb "
+            "water_000002.ply water_000002.vdb");
   EXPECT_NE(r.err.find("spacing 0.05 m (" + dir.file("run.h5") + ":/parameters/spacing)"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find(fmt::format("0 static, {} bodies", run.bodies.size())), std::string::npos) << r.err;
 }
@@ -38,7 +38,8 @@ TEST(ExportTool, FrameRangesSplitTheWater) {
   EXPECT_EQ(r.exit_code, 2);  // unknown option
   r = test::run(export_cmd(dir.file("frames") + " -o " + dir.file("out") + " --no-water -q"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(test::list_folder(dir.file("out")), "solids.glb water_000000.vdb water_000001.vdb water_000002.vdb");
+  EXPECT_EQ(test::list_folder(dir.file("out")),
+            "blender_scene.py solids.glb water_000000.vdb water_000001.vdb water_000002.vdb");
 }
 
 TEST(ExportTool, BadInputsWriteNothing) {
@@ -64,14 +65,14 @@ TEST(ExportTool, BadInputsWriteNothing) {
       {dir.file("frames") + out + " --fragments " + dir.file("u.h5"), "u.h5: is a 'particles' file, expected a 'fragments' file"},
       {dir.file("frames") + out + " --run " + dir.file("frames/000000.h5"), "000000.h5: is a 'frame' file, expected a 'run' file"},
       {dir.file("frames") + out + " --scene " + dir.file("bad.toml"),
-       "bad.toml: camera.key[1].time: 0 is not after camera.key[0].time = 1 (the camera of solids.glb comes from it; "
-       "--no-camera leaves it out)"},
+       "bad.toml: camera.key[1].time: 0 is not after camera.key[0].time = 1 (the camera of solids.glb and the look of "
+       "blender_scene.py come from it)"},
       {dir.file("frames") + out + " --scene " + dir.file("missing.toml"), "missing.toml"},
       // Drawable at every sampled point, but looking down along up at frame 1's time (t = 0.05 s).
       {dir.file("frames") + out + " --scene " + dir.file("down.toml"),
        "000001.h5: the camera at t = 0.05 s: up: is parallel to the viewing direction"},
       {dir.file("frames") + out + " --scene " + dir.file("bad.toml") + " --no-solids",
-       "its camera goes into solids.glb, which --no-solids leaves out"},
+       "its camera and look go into solids.glb and blender_scene.py, which --no-solids leaves out"},
       {dir.file("frames") + out + " --scene " + dir.file("bad.toml") + " --no-camera", "excludes"},
   };
   std::ofstream(dir.file("down.toml")) << "[camera]\ntarget = [0, 0, 0.5]\ninterpolation = \"linear\"\n"
@@ -196,7 +197,8 @@ TEST(ExportTool, WithoutARunTheSpacingIsNeeded) {
   EXPECT_NE(r.err.find("give --run or --spacing"), std::string::npos) << r.err;
   r = test::run(export_cmd(dir.file("frames") + " -o " + dir.file("out") + " --spacing 0.05 -q"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(test::list_folder(dir.file("out")), "water_000000.vdb water_000001.vdb water_000002.vdb");
+  // No solids without a run; the Blender script sets up the water alone.
+  EXPECT_EQ(test::list_folder(dir.file("out")), "blender_scene.py water_000000.vdb water_000001.vdb water_000002.vdb");
 }
 
 }  // namespace

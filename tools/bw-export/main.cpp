@@ -91,6 +91,9 @@ void print_summary(const Options& o, const bw::exporter::ExportReport& r) {
   } else if (!o.no_solids) {
     std::fprintf(stderr, "  solids       none: no run file with solids\n");
   }
+  if (!r.blender_script_path.empty())
+    std::fprintf(stderr, "  blender      blender --python %s (the scene set up; -- --save FILE.blend)\n",
+                 r.blender_script_path.c_str());
 }
 
 }  // namespace
@@ -98,7 +101,8 @@ void print_summary(const Options& o, const bw::exporter::ExportReport& r) {
 int main(int argc, char** argv) {
   CLI::App app{"Export a simulation's frames for Blender, Houdini and other programs: the water as\n"
                "OpenVDB level sets (OUT_DIR/water_NNNNNN.vdb, a grid named \"surface\"), optionally as\n"
-               "meshes too, and every solid and body as one animated glTF (OUT_DIR/solids.glb).",
+               "meshes too, every solid and body as one animated glTF (OUT_DIR/solids.glb), and a script\n"
+               "that sets up a Blender scene from them (OUT_DIR/blender_scene.py).",
                "bw-export"};
   bw::cli::setup(app,
                  "  bw-export out/scenes/plate/0.025/frames -o out/scenes/plate/0.025/export\n"
@@ -131,9 +135,9 @@ int main(int argc, char** argv) {
   app.add_option("--up", o.up, "Up axis of the water files: z as breakwater and Blender, y for Houdini")
       ->check(CLI::IsMember({"z", "y"}));
   app.add_flag("--no-water", o.no_water, "Leave out the water (only solids.glb)");
-  app.add_flag("--no-solids", o.no_solids, "Leave out solids.glb (only the water)");
+  app.add_flag("--no-solids", o.no_solids, "Leave out solids.glb and blender_scene.py (only the water)");
   auto* scene = app.add_option("--scene", o.scene,
-                               "Scene file whose [camera] (and [render] size) solids.glb gets (default: the run's scene)");
+                               "Scene file whose [camera] solids.glb gets, and whose look blender_scene.py (default: the run's scene)");
   app.add_flag("--no-camera", o.no_camera, "Leave the scene's camera out of solids.glb")->excludes(scene);
   app.add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
   app.add_flag("-v,--verbose", o.verbose, "Print the level set's settings and where they came from");
