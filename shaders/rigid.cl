@@ -408,3 +408,19 @@ __kernel void sensor_pressure(uint count, __global const uint* first, __global c
   }
   out[s] = -sum;
 }
+
+// [output] fields "wall_pressure": each boundary particle's patch pressure this step,
+// -F . n / spacing^2 (the fluid's and contacts' force F on it, its normal n out of its
+// solid, the patch spacing^2 it stands for), added to its time integral (Pa s), master
+// indices first + k for k < count.
+__kernel void wall_pressure_integrate(uint first, uint count, float dt, __global const float* fx,
+                                      __global const float* fy, __global const float* fz,
+                                      __global const float* mnx, __global const float* mny,
+                                      __global const float* mnz, __global const uint* mowner,
+                                      __global const OwnerParams* owners, __global float* integral) {
+  const uint k = get_global_id(0);
+  if (k >= count) return;
+  const uint m = first + k;
+  const float s = owners[mowner[m]].spacing;
+  integral[m] -= dt * (fx[m] * mnx[m] + fy[m] * mny[m] + fz[m] * mnz[m]) / (s * s);
+}

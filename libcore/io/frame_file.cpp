@@ -57,6 +57,7 @@ FrameFields FrameData::fields() const {
   f.pressure = !p.empty();
   f.id = !id.empty();
   f.boundary = !bx.empty();
+  f.wall_pressure = !bp.empty();
   return f;
 }
 
@@ -71,6 +72,9 @@ void write_frame(const FrameData& f, const std::string& path) {
   };
   if (f.y.size() != n || f.z.size() != n) fail_run("{}: x, y, z differ in length", path);
   check(f.vx, "vx"), check(f.vy, "vy"), check(f.vz, "vz"), check(f.rho, "rho"), check(f.p, "p"), check(f.id, "id");
+  if (f.by.size() != f.bx.size() || f.bz.size() != f.bx.size()) fail_run("{}: boundary x, y, z differ in length", path);
+  if (!f.bp.empty() && f.bp.size() != f.bx.size())
+    fail_run("{}: field boundary/p has {} values for {} boundary particles", path, f.bp.size(), f.bx.size());
 
   h5::File file = h5::File::create(path, kKind);
   h5::Group& root = file.root();
@@ -98,6 +102,7 @@ void write_frame(const FrameData& f, const std::string& path) {
     boundary.write<float>("x", f.bx);
     boundary.write<float>("y", f.by);
     boundary.write<float>("z", f.bz);
+    if (!f.bp.empty()) boundary.write<float>("p", f.bp);
   }
   if (f.bodies.size() > 0) {
     const BodyStates& b = f.bodies;
@@ -143,6 +148,7 @@ FrameData read_frame(const std::string& path) {
     f.bx = b.read_rows<float>("x", 0, &k);
     read_optional(b, "y", k, f.by);
     read_optional(b, "z", k, f.bz);
+    read_optional(b, "p", k, f.bp);
   }
   if (step.is_group("bodies")) f.bodies = read_bodies(step.open_group("bodies"));
   return f;
@@ -166,7 +172,11 @@ FrameHeader read_frame_header(const std::string& path, bool with_bodies) {
   h.fields.pressure = step.has("p");
   h.fields.id = step.has("id");
   h.fields.boundary = step.is_group("boundary");
-  if (h.fields.boundary) h.boundary = length(step.open_group("boundary"), "x");
+  if (h.fields.boundary) {
+    const h5::Group b = step.open_group("boundary");
+    h.boundary = length(b, "x");
+    h.fields.wall_pressure = b.has("p");
+  }
   if (step.is_group("bodies")) {
     const h5::Group g = step.open_group("bodies");
     h.body_count = length(g, "id");

@@ -28,6 +28,7 @@ struct FrameFields {
   bool pressure = false;   // p
   bool id = false;         // id
   bool boundary = false;   // boundary/x, y, z
+  bool wall_pressure = false;  // boundary/p (with boundary)
 };
 
 struct FrameData {
@@ -39,8 +40,10 @@ struct FrameData {
   std::vector<float> vx, vy, vz;
   std::vector<float> rho, p;
   std::vector<std::int64_t> id;
-  // Boundary particles in world coordinates (field "boundary").
+  // Boundary particles in world coordinates (field "boundary"), and the mean pressure
+  // on each one's patch since the previous frame (field "wall_pressure", Pa).
   std::vector<float> bx, by, bz;
+  std::vector<float> bp;
   BodyStates bodies;
 
   std::size_t fluid_count() const { return x.size(); }

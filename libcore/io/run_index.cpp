@@ -196,8 +196,14 @@ std::string xdmf_text(const RunIndex& index) {
         g += attribute("id", "Scalar", "Node", {std::to_string(f.fluid), "Int", 8, file + ":" + f.step + "/id"}, in);
       return g;
     });
-    // The static solids' and the bodies' particles.
-    add(boundary, f.boundary > 0, [&] { return points_geometry(f.boundary, file, f.step + "/boundary", in); });
+    // The static solids' and the bodies' particles, with the pressure on their patches.
+    add(boundary, f.boundary > 0, [&] {
+      std::string g = points_geometry(f.boundary, file, f.step + "/boundary", in);
+      if (f.fields.wall_pressure)
+        g += attribute("wall_pressure", "Scalar", "Node",
+                       {std::to_string(f.boundary), "Float", 4, file + ":" + f.step + "/boundary/p"}, in);
+      return g;
+    });
     // The bodies' poses: one point per body at its centre of mass.
     add(bodies, f.bodies > 0, [&] {
       const std::string g = f.step + "/bodies";

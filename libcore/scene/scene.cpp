@@ -668,6 +668,7 @@ void read_output(Reader& top, Scene& s) {
     else if (f == "pressure") s.fields.pressure = true;
     else if (f == "id") s.fields.id = true;
     else if (f == "boundary") s.fields.boundary = true;
+    else if (f == "wall_pressure") s.fields.wall_pressure = s.fields.boundary = true;  // on the boundary's particles
     else {
       std::string known;
       for (const auto& k : field_names()) known += (known.empty() ? "" : ", ") + k;
@@ -680,7 +681,7 @@ void read_output(Reader& top, Scene& s) {
 }  // namespace
 
 const std::vector<std::string>& field_names() {
-  static const std::vector<std::string> names = {"velocity", "density", "pressure", "id", "boundary"};
+  static const std::vector<std::string> names = {"velocity", "density", "pressure", "id", "boundary", "wall_pressure"};
   return names;
 }
 

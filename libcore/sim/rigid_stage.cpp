@@ -152,6 +152,9 @@ void Solver::Impl::replace_body_particles(int body, const std::vector<Vec3d>& pa
 
 void Solver::Impl::upload_layout() {
   RigidStage& r = *rigid;
+  // The static particles' wall pressure so far stays; the bodies' starts again.
+  const std::vector<float> static_wall =
+      r.wall_allocated ? ctx.read_vector<float>(r.wall_integral, r.ns) : std::vector<float>(r.ns, 0.0f);
   // Master order: static particles, then each body's in index order.
   std::uint32_t total = r.ns;
   for (BodyEntry& e : r.bodies) {
@@ -180,6 +183,7 @@ void Solver::Impl::upload_layout() {
     r.keys_tmp = uints(cap, "boundary keys (sort scratch)");
     r.order_tmp = uints(cap, "boundary order (sort scratch)");
     r.rank = uints(cap, "boundary rank");
+    r.wall_allocated = false;
     bx = floats(cap, "boundary x");
     by = floats(cap, "boundary y");
     bz = floats(cap, "boundary z");
@@ -268,6 +272,7 @@ void Solver::Impl::upload_layout() {
   r.nb = total;
   nb = total;
   r.layout_dirty = false;
+  if (r.wall_pressure) reset_wall_pressure(static_wall);
 }
 
 // What contacts need of every owner: static solids have no mass (inv_mass 0), as do
@@ -626,6 +631,53 @@ void Solver::Impl::sample_sensors(double t0, double t1) {
     ++st.sample;
     from = end;
   }
+}
+
+void Solver::Impl::reset_wall_pressure(const std::vector<float>& static_part) {
+  RigidStage& r = *rigid;
+  if (!r.wall_allocated) {
+    r.wall_integral = floats(std::max(r.capacity, 1u), "boundary wall pressure (master order)");
+    r.wall_allocated = true;
+  }
+  std::vector<float> integral(r.nb, 0.0f);
+  std::copy(static_part.begin(), static_part.begin() + std::min<std::size_t>(static_part.size(), r.nb), integral.begin());
+  if (!integral.empty()) ctx.write_vector(r.wall_integral, integral);
+  r.wall_body_time = 0;
+}
+
+void Solver::Impl::integrate_wall_pressure(double dt) {
+  RigidStage& r = *rigid;
+  if (r.nb > 0 && !r.block_table.empty()) {
+    r.wall_integrate.args(0u, r.nb, static_cast<float>(dt), r.fx, r.fy, r.fz, r.mnx, r.mny, r.mnz, r.mowner, r.owners,
+                          r.wall_integral);
+    ctx.launch(r.wall_integrate, r.nb);
+  }
+  r.wall_static_time += dt;
+  r.wall_body_time += dt;
+}
+
+std::vector<float> Solver::Impl::take_wall_pressure() {
+  RigidStage& r = *rigid;
+  std::vector<float> p = r.nb > 0 ? ctx.read_vector<float>(r.wall_integral, r.nb) : std::vector<float>{};
+  for (std::uint32_t k = 0; k < r.nb; ++k) {
+    const double time = k < r.ns ? r.wall_static_time : r.wall_body_time;
+    p[k] = time > 0 ? static_cast<float>(p[k] / time) : 0.0f;
+  }
+  r.wall_static_time = 0;
+  reset_wall_pressure({});
+  return p;
+}
+
+void Solver::record_wall_pressure() {
+  Impl& s = *impl_;
+  if (s.steps > 0) fail_run("the wall pressure is recorded from the first step on");
+  measure_static_reactions(true);
+  RigidStage& r = *s.rigid;
+  if (r.wall_pressure) return;
+  r.wall_pressure = true;
+  r.wall_integrate = r.program.kernel("wall_pressure_integrate");
+  r.layout_dirty = true;
+  s.boundary_dirty = true;
 }
 
 Vec3d Solver::static_impulse() const { return impl_->rigid ? impl_->rigid->static_impulse : Vec3d::Zero(); }

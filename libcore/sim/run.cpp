@@ -249,6 +249,7 @@ Simulation::Simulation(const scene::Scene& scene, const compute::DeviceInfo& dev
   s.context = std::make_unique<compute::Context>(device);
   s.solver = std::make_unique<Solver>(s.setup, *s.context);
   if (scene.loads) s.solver->measure_static_reactions(true);
+  if (scene.fields.wall_pressure) s.solver->record_wall_pressure();
   if (!scene.sensors.empty()) {
     std::vector<SensorWeights> sensors;
     for (std::size_t i = 0; i < scene.sensors.size(); ++i)

@@ -413,6 +413,7 @@ StepInfo Solver::step(double t_target) {
   }
 
   if (s.rigid) s.rigid_forces(dt);
+  if (s.rigid && s.rigid->wall_pressure) s.integrate_wall_pressure(dt);
   if (s.sensors) s.sample_sensors(s.t, lands ? t_target : s.t + dt);
   if (s.fracture) s.fracture_load(dt);
   s.integrate.args(s.P, s.n, static_cast<float>(dt), s.x[f], s.y[f], s.z[f], s.vx[f], s.vy[f], s.vz[f], s.ax, s.ay,
@@ -528,6 +529,7 @@ FrameData Solver::frame(const FrameFields& fields, int frame_index) {
     d.by = s.boundary_host.y;
     d.bz = s.boundary_host.z;
   }
+  if (fields.wall_pressure && s.rigid && s.rigid->wall_pressure) d.bp = s.take_wall_pressure();
   d.bodies = body_states();
   return d;
 }

@@ -131,7 +131,14 @@ class Solver {
 
   FluidStats stats();
   // The fluid particles now, with the optional fields asked for (positions always).
+  // With fields.wall_pressure (and record_wall_pressure), each boundary particle's mean
+  // patch pressure since the last such frame, which starts the next mean.
   FrameData frame(const FrameFields& fields, int frame_index);
+  // [output] fields "wall_pressure", before the first step: integrate every boundary
+  // particle's patch pressure, -F . n / spacing^2 (F the fluid's and contacts' force on
+  // it, n its normal), over time for frame() (docs/formats.md). Measures the static
+  // reactions.
+  void record_wall_pressure();
 
   const Parameters& parameters() const;
   compute::Context& context();

@@ -113,6 +113,14 @@ struct RigidStage {
   std::map<double, double> damping_of;   // damping ratio by restitution (rigid::damping_ratio_for_step)
   Vec3d static_impulse = Vec3d::Zero();  // N s
   std::vector<Vec3d> solid_impulse;      // N s, per scene solid: static, or its bodies and fragments
+  // [output] fields "wall_pressure" (Solver::record_wall_pressure): per particle, master
+  // order, its patch pressure integrated over time (Pa s) since the last frame for the
+  // static particles, and for the bodies' since then or since their layout last changed
+  // (a fracture re-lays their master order), over these times (s).
+  Kernel wall_integrate;
+  Buffer wall_integral;
+  bool wall_pressure = false, wall_allocated = false;
+  double wall_static_time = 0, wall_body_time = 0;
 };
 
 // Pressure sensors (sim/sensors.h, rigid_stage.cpp): their particles and weights on
@@ -222,6 +230,9 @@ struct Solver::Impl {
   const BodyEntry& body_entry(int body) const;
   std::uint64_t rigid_bytes() const;
   void sample_sensors(double t0, double t1);
+  void integrate_wall_pressure(double dt);
+  void reset_wall_pressure(const std::vector<float>& static_part);
+  std::vector<float> take_wall_pressure();
 
   // fracture_stage.cpp
   void enable_fracture(const Setup& setup, const std::vector<int>& body_of_setup);

@@ -119,7 +119,7 @@ std::vector<double> column(const std::vector<Vec3d>& v, int k) {
 }
 
 // Every time of the index against the frames: fluid with its fields, boundary
-// particles, bodies' poses.
+// particles with their wall pressure, bodies' poses.
 void expect_frames(const Seen& seen, const std::string& out) {
   ASSERT_EQ(seen.times.size(), static_cast<std::size_t>(kFrames)) << seen.text;
   for (int f = 0; f < kFrames; ++f) {
@@ -132,6 +132,7 @@ void expect_frames(const Seen& seen, const std::string& out) {
     expect_field(seen, f, "fluid", "pressure", {doubles(d.p)});
     expect_field(seen, f, "fluid", "id", {doubles(d.id)});
     expect_points(seen, f, "boundary", d.bx, d.by, d.bz);
+    expect_field(seen, f, "boundary", "wall_pressure", {doubles(d.bp)});
     ASSERT_EQ(d.bodies.size(), 1u);
     const auto* b = seen.find(fmt::format("block {} bodies", f));
     ASSERT_TRUE(b) << seen.text;
@@ -160,7 +161,7 @@ class ParaView : public ::testing::Test {
            "[[solid]]\nname = \"tank\"\nparticles = \"tank.h5\"\n"
            "[[solid]]\nname = \"crate\"\nparticles = \"box.h5\"\ndynamic = true\ndensity = 600\n"
            "translation = [0.04, 0.02, 0.05]\n"
-           "[output]\nfields = [\"velocity\", \"density\", \"pressure\", \"id\", \"boundary\"]\n";
+           "[output]\nfields = [\"velocity\", \"density\", \"pressure\", \"id\", \"boundary\", \"wall_pressure\"]\n";
     sim_ = new test::CommandResult(test::run(test::tool("bw-sim") + " " + dir.file("scene.toml") + " -o " +
                                              dir.file("out") + " --quiet"));
   }
