@@ -102,13 +102,14 @@ bool unit_color(const Vec3d& c) { return (c.array() >= 0).all() && (c.array() <=
 
 // What one [[camera.key]] gives; the rest comes from [camera] itself.
 struct KeyValues {
-  std::optional<double> time, fov;
+  std::optional<double> time, frame, fov;
   std::optional<Vec3d> position, target, up;
 };
 
 // [camera]: one camera, or keys over time ([[camera.key]]) whose missing values are
 // the table's own.
-CameraPath read_camera(const toml::table& t, const std::string& name, std::string& track) {
+// `frame_rate`: the file's [time] frame_rate, for keys given by frame (0: not given).
+CameraPath read_camera(const toml::table& t, const std::string& name, double frame_rate, std::string& track) {
   KeyValues base;
   std::vector<KeyValues> keys;
   std::string interpolation = "smooth";
@@ -133,6 +134,7 @@ CameraPath read_camera(const toml::table& t, const std::string& name, std::strin
     for (std::size_t k = 0; k < a->size(); ++k) {
       TableReader key(*a->get(k)->as_table(), name, fmt::format("camera.key[{}]", k));
       key.optional_number("time", keys[k].time);
+      key.optional_number("frame", keys[k].frame);
       key.optional_vec3("position", keys[k].position);
       key.optional_vec3("target", keys[k].target);
       key.optional_vec3("up", keys[k].up);
@@ -157,11 +159,22 @@ CameraPath read_camera(const toml::table& t, const std::string& name, std::strin
   }
   std::vector<CameraKey> path;
   for (std::size_t k = 0; k < keys.size(); ++k) {
-    const KeyValues& v = keys[k];
+    KeyValues& v = keys[k];
     const std::string key = fmt::format("camera.key[{}]", k);
-    if (!v.time) fail_input("{}: {}.time: required (the simulation time of the key, s)", name, key);
-    if (k > 0 && !(*v.time > *keys[k - 1].time))
+    if (v.frame) {
+      // A frame of the run: frame F is written at F / [time] frame_rate (docs/formats.md).
+      if (v.time) fail_input("{}: {}: give time or frame, not both", name, key);
+      if (!(frame_rate > 0))
+        fail_input("{}: {}.frame: needs [time] frame_rate in this file, the rate its frames count in", name, key);
+      v.time = *v.frame / frame_rate;
+    }
+    if (!v.time) fail_input("{}: {}.time: required (the simulation time of the key, s; or its frame)", name, key);
+    if (k > 0 && !(*v.time > *keys[k - 1].time)) {
+      if (v.frame)
+        fail_input("{}: {}.frame: {} (t = {} s) is not after camera.key[{}] (t = {} s)", name, key, *v.frame, *v.time,
+                   k - 1, *keys[k - 1].time);
       fail_input("{}: {}.time: {} is not after camera.key[{}].time = {}", name, key, *v.time, k - 1, *keys[k - 1].time);
+    }
     if (!v.position && !base.position)
       fail_input("{}: {}.position: required in every key when [camera] has no position", name, key);
     if (!v.target && !base.target)
@@ -277,7 +290,12 @@ RenderSettings parse_render_settings(const std::string& toml_text, const std::st
     return n->as_table();
   };
 
-  if (const toml::table* t = table("camera")) s.camera = read_camera(*t, name, s.camera_track);
+  // Keys may count in frames of the file's own [time] frame_rate (bw-sim checks the rest of [time]).
+  double frame_rate = 0;
+  if (const toml::table* time = table("time"))
+    if (const toml::node* rate = time->get("frame_rate"); rate && rate->is_number())
+      frame_rate = rate->value<double>().value();
+  if (const toml::table* t = table("camera")) s.camera = read_camera(*t, name, frame_rate, s.camera_track);
   if (const toml::table* t = table("light")) {
     TableReader r(*t, name, "light");
     r.vec3("direction", s.light.direction);

@@ -122,6 +122,35 @@ fov = 30
   EXPECT_NEAR(path.at(0.5).fov_degrees, 35, 1e-12);
 }
 
+// A key may give the frame it is at instead of its time: frame F of a run is written
+// at F / [time] frame_rate, the scene's own rate; keys by time and by frame mix.
+TEST(CameraPath, KeysByFrameAreAtTheFramesTimes) {
+  const auto s = br::parse_render_settings(R"(
+[time]
+frame_rate = 24
+end = 3
+[camera]
+target = [0, 0, 0]
+[[camera.key]]
+frame = 12
+position = [0, -2, 1]
+[[camera.key]]
+time = 1.25
+position = [1, -2, 1]
+[[camera.key]]
+frame = 60
+position = [2, -2, 1]
+)",
+                                           "scene.toml");
+  ASSERT_TRUE(s.camera);
+  const auto& keys = s.camera->keys();
+  ASSERT_EQ(keys.size(), 3u);
+  EXPECT_DOUBLE_EQ(keys[0].time, 12.0 / 24);
+  EXPECT_DOUBLE_EQ(keys[1].time, 1.25);
+  EXPECT_DOUBLE_EQ(keys[2].time, 60.0 / 24);
+  EXPECT_EQ(s.camera->at(60.0 / 24).position, Vec3d(2, -2, 1));
+}
+
 // With track, the target is a body's centre, frame by frame: the scene gives none.
 TEST(CameraPath, ATrackedBodyIsTheTarget) {
   const auto s = br::parse_render_settings(
@@ -165,7 +194,15 @@ TEST(CameraPath, BadKeysAreNamed) {
   EXPECT_EQ(error(base + "[[camera.key]]\ntime = 1\nposition = [0, -1, 1]\n[[camera.key]]\ntime = 1\nposition = [1, -1, 1]\n"),
             "s.toml: camera.key[1].time: 1 is not after camera.key[0].time = 1");
   EXPECT_EQ(error(base + "[[camera.key]]\nposition = [0, -1, 1]\n"),
-            "s.toml: camera.key[0].time: required (the simulation time of the key, s)");
+            "s.toml: camera.key[0].time: required (the simulation time of the key, s; or its frame)");
+  // Keys by frame count in the file's own [time] frame_rate.
+  EXPECT_EQ(error(base + "[[camera.key]]\nframe = 3\nposition = [0, -1, 1]\n"),
+            "s.toml: camera.key[0].frame: needs [time] frame_rate in this file, the rate its frames count in");
+  EXPECT_EQ(error("[time]\nframe_rate = 30\n" + base + "[[camera.key]]\nframe = 3\ntime = 0.1\nposition = [0, -1, 1]\n"),
+            "s.toml: camera.key[0]: give time or frame, not both");
+  EXPECT_EQ(error("[time]\nframe_rate = 20\n" + base +
+                  "[[camera.key]]\ntime = 1\nposition = [0, -1, 1]\n[[camera.key]]\nframe = 10\nposition = [1, -1, 1]\n"),
+            "s.toml: camera.key[1].frame: 10 (t = 0.5 s) is not after camera.key[0] (t = 1 s)");
   EXPECT_EQ(error(base + "[[camera.key]]\ntime = 0\n"),
             "s.toml: camera.key[0].position: required in every key when [camera] has no position");
   EXPECT_EQ(error(base + "[[camera.key]]\ntime = 0\nposition = [0, -1, 1]\nzoom = 2\n"),
