@@ -10,12 +10,14 @@
 # at the given frames. Prints one line "blender-check: ..." and raises on a mismatch,
 # so Blender exits with 1.
 import json
-import math
 import os
 import struct
 import sys
 
 import bpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from blender_camera import camera_matches, camera_view_error  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
 args = {}
@@ -101,16 +103,9 @@ if "glb" in args:
     for view in expect.get("camera", []):
         if len(cameras) != 1:
             fail(f"{len(cameras)} camera objects, expected 1")
-        camera = cameras[0]
-        scene.frame_set(int(view["frame"]))
-        m = camera.matrix_world
-        # Blender's camera looks down its local -z with +y up, as glTF's.
-        got = {"position": [m[r][3] for r in range(3)], "forward": [-m[r][2] for r in range(3)],
-               "up": [m[r][1] for r in range(3)]}
-        error = max(abs(got[k][r] - view[k][r]) for k in got for r in range(3))
-        fov = math.degrees(camera.data.angle_y)
-        if error > 1e-4 or abs(fov - view["fov_degrees"]) > 1e-3:
-            fail(f"camera at frame {view['frame']}: {got}, fov {fov:.6g} degrees; expected {view}")
+        error, fov_error, got = camera_view_error(scene, cameras[0], view)
+        if not camera_matches(error, fov_error):
+            fail(f"camera at frame {view['frame']}: {got}; expected {view}")
         report.append(f"camera@{view['frame']} error {error:.2g}")
 
 if "vdb" in args:

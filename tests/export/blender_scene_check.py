@@ -12,12 +12,14 @@
 # set, whose volume and bounds Blender's surface (its Volume to Mesh modifier) must
 # have. Prints one line "blender-scene-check: ..." and raises on a mismatch.
 import json
-import math
 import os
 import sys
 
 import bmesh
 import bpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from blender_camera import camera_matches, camera_view_error  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
 with open(argv[argv.index("--expect") + 1]) as f:
@@ -88,14 +90,9 @@ for view in expect.get("camera", []):
     camera = scene.camera
     if camera is None or camera.type != "CAMERA":
         fail("the scene has no camera")
-    scene.frame_set(int(view["frame"]))
-    m = camera.matrix_world
-    got = {"position": [m[r][3] for r in range(3)], "forward": [-m[r][2] for r in range(3)],
-           "up": [m[r][1] for r in range(3)]}
-    error = max(abs(got[k][r] - view[k][r]) for k in got for r in range(3))
-    fov = math.degrees(camera.data.angle_y)
-    if error > 1e-4 or abs(fov - view["fov_degrees"]) > 1e-3:
-        fail(f"scene camera at frame {view['frame']}: {got}, fov {fov:.6g} degrees; expected {view}")
+    error, fov_error, got = camera_view_error(scene, camera, view)
+    if not camera_matches(error, fov_error):
+        fail(f"scene camera at frame {view['frame']}: {got}; expected {view}")
     report.append(f"camera@{view['frame']} error {error:.2g}")
 
 water = bpy.data.objects.get("water")
