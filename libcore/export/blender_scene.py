@@ -150,6 +150,10 @@ def import_water(folder, collection, scene):
     files = water_files(folder)
     if not files:
         return None, []
+    if not bpy.app.build_options.openvdb or bpy.app.version < (2, 91, 0):
+        raise RuntimeError(f"breakwater: this Blender ({bpy.app.version_string}) cannot read the water's OpenVDB files "
+                           "into a surface (it needs OpenVDB and the Volume to Mesh modifier of Blender 2.91 or later); "
+                           "export the water as meshes too (bw-export --mesh obj) and import those")
     numbers = list(files)
     bpy.ops.object.volume_import(filepath=os.path.join(folder, files[numbers[0]]), directory=folder,
                                  files=[{"name": name} for name in files.values()], use_sequence_detection=True)
