@@ -94,7 +94,7 @@ def move_to(collection, objects):
 def import_solids(folder, collection, scene):
     path = os.path.join(folder, "solids.glb")
     if not os.path.isfile(path):
-        return [], None
+        return None, None
     before = set(bpy.data.objects)
     # Shading "FLAT": the solids' faces are flat (and Debian 12's Blender 3.4 fails
     # with the importer's default "NORMALS").
@@ -259,7 +259,8 @@ def main():
         bpy.ops.wm.save_as_mainfile(filepath=path)
         bpy.ops.file.make_paths_relative()  # the .blend finds the export where it lies beside it
         bpy.ops.wm.save_mainfile(filepath=path)
-    print(f"breakwater: {len(solids)} objects from solids.glb, water in {len(numbers)} frames"
+    print(f"breakwater: {f'{len(solids)} objects from solids.glb' if solids is not None else 'no solids.glb'}, "
+          f"water in {len(numbers)} frames"
           f"{f' ({numbers[0]}..{numbers[-1]})' if numbers else ''}, frames {first}..{last} at "
           f"{SETTINGS['frame_rate']:g} fps, camera {'from solids.glb' if camera else 'none'}"
           f"{', saved ' + options['save'] if options['save'] else ''}")
