@@ -102,4 +102,28 @@ double surface_elevation(const FrameData& frame, double x, double y, double radi
   return top >= heights.front() ? top : std::numeric_limits<double>::quiet_NaN();
 }
 
+WallLoad wall_load(const FrameData& frame, int solid, const std::string& where) {
+  if (frame.bp.empty())
+    fail_input("{}: holds no wall pressure; add \"wall_pressure\" to the scene's [output] fields", where);
+  if (frame.bsolid.size() != frame.bp.size())
+    fail_input("{}: holds no boundary/solid (written by bw-sim since the wall pressure): run the scene again", where);
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  WallLoad w;
+  w.peak = w.mean = kNaN;
+  w.at = Vec3d::Constant(kNaN);
+  double sum = 0;
+  for (std::size_t k = 0; k < frame.bp.size(); ++k) {
+    if (frame.bsolid[k] != solid || frame.bp[k] == 0.0f) continue;
+    const double p = frame.bp[k];
+    if (w.loaded == 0 || p > w.peak) {
+      w.peak = p;
+      w.at = Vec3d(frame.bx[k], frame.by[k], frame.bz[k]);
+    }
+    sum += p;
+    ++w.loaded;
+  }
+  if (w.loaded) w.mean = sum / static_cast<double>(w.loaded);
+  return w;
+}
+
 }  // namespace bw::analysis

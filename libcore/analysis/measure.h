@@ -58,4 +58,17 @@ double surface_elevation(const FrameData& frame, double x, double y, double radi
                          double gap = std::numeric_limits<double>::infinity(),
                          double bottom = -std::numeric_limits<double>::infinity());
 
+// What a frame's wall pressure (field "wall_pressure", docs/formats.md) says of one
+// solid: the highest patch pressure over its particles, where it is, and the mean over
+// the loaded patches (those the frame's mean pressure is not 0 on: the fluid or a
+// contact touched them during the interval). peak and mean NaN, and loaded 0, when no
+// patch was loaded. Throws InputError when the frame lacks boundary/p or boundary/solid.
+struct WallLoad {
+  double peak = 0;
+  Vec3d at = Vec3d::Zero();
+  double mean = 0;
+  std::size_t loaded = 0;   // patches
+};
+WallLoad wall_load(const FrameData& frame, int solid, const std::string& where);
+
 }  // namespace bw::analysis

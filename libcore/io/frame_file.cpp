@@ -58,6 +58,7 @@ FrameFields FrameData::fields() const {
   f.id = !id.empty();
   f.boundary = !bx.empty();
   f.wall_pressure = !bp.empty();
+  f.boundary_solid = !bsolid.empty();
   return f;
 }
 
@@ -75,6 +76,8 @@ void write_frame(const FrameData& f, const std::string& path) {
   if (f.by.size() != f.bx.size() || f.bz.size() != f.bx.size()) fail_run("{}: boundary x, y, z differ in length", path);
   if (!f.bp.empty() && f.bp.size() != f.bx.size())
     fail_run("{}: field boundary/p has {} values for {} boundary particles", path, f.bp.size(), f.bx.size());
+  if (!f.bsolid.empty() && f.bsolid.size() != f.bx.size())
+    fail_run("{}: boundary/solid has {} values for {} boundary particles", path, f.bsolid.size(), f.bx.size());
 
   h5::File file = h5::File::create(path, kKind);
   h5::Group& root = file.root();
@@ -103,6 +106,7 @@ void write_frame(const FrameData& f, const std::string& path) {
     boundary.write<float>("y", f.by);
     boundary.write<float>("z", f.bz);
     if (!f.bp.empty()) boundary.write<float>("p", f.bp);
+    if (!f.bsolid.empty()) boundary.write<std::int32_t>("solid", f.bsolid);
   }
   if (f.bodies.size() > 0) {
     const BodyStates& b = f.bodies;
@@ -149,6 +153,7 @@ FrameData read_frame(const std::string& path) {
     read_optional(b, "y", k, f.by);
     read_optional(b, "z", k, f.bz);
     read_optional(b, "p", k, f.bp);
+    read_optional(b, "solid", k, f.bsolid);
   }
   if (step.is_group("bodies")) f.bodies = read_bodies(step.open_group("bodies"));
   return f;
@@ -176,6 +181,7 @@ FrameHeader read_frame_header(const std::string& path, bool with_bodies) {
     const h5::Group b = step.open_group("boundary");
     h.boundary = length(b, "x");
     h.fields.wall_pressure = b.has("p");
+    h.fields.boundary_solid = b.has("solid");
   }
   if (step.is_group("bodies")) {
     const h5::Group g = step.open_group("bodies");

@@ -29,6 +29,7 @@ struct FrameFields {
   bool id = false;         // id
   bool boundary = false;   // boundary/x, y, z
   bool wall_pressure = false;  // boundary/p (with boundary)
+  bool boundary_solid = false; // boundary/solid (written with boundary; files of earlier versions lack it)
 };
 
 struct FrameData {
@@ -44,6 +45,7 @@ struct FrameData {
   // on each one's patch since the previous frame (field "wall_pressure", Pa).
   std::vector<float> bx, by, bz;
   std::vector<float> bp;
+  std::vector<std::int32_t> bsolid;  // the scene solid of each (a body's: its solid's)
   BodyStates bodies;
 
   std::size_t fluid_count() const { return x.size(); }

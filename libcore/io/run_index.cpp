@@ -199,6 +199,9 @@ std::string xdmf_text(const RunIndex& index) {
     // The static solids' and the bodies' particles, with the pressure on their patches.
     add(boundary, f.boundary > 0, [&] {
       std::string g = points_geometry(f.boundary, file, f.step + "/boundary", in);
+      if (f.fields.boundary_solid)
+        g += attribute("solid", "Scalar", "Node",
+                       {std::to_string(f.boundary), "Int", 4, file + ":" + f.step + "/boundary/solid"}, in);
       if (f.fields.wall_pressure)
         g += attribute("wall_pressure", "Scalar", "Node",
                        {std::to_string(f.boundary), "Float", 4, file + ":" + f.step + "/boundary/p"}, in);

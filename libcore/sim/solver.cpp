@@ -521,13 +521,18 @@ FrameData Solver::frame(const FrameFields& fields, int frame_index) {
     d.id.assign(ids.begin(), ids.end());
   }
   if (fields.boundary && s.rigid) {  // master order: the static solids', then each body's
-    d.bx = s.ctx.read_vector<float>(s.rigid->mx, s.nb);
-    d.by = s.ctx.read_vector<float>(s.rigid->my, s.nb);
-    d.bz = s.ctx.read_vector<float>(s.rigid->mz, s.nb);
+    const RigidStage& r = *s.rigid;
+    d.bx = s.ctx.read_vector<float>(r.mx, s.nb);
+    d.by = s.ctx.read_vector<float>(r.my, s.nb);
+    d.bz = s.ctx.read_vector<float>(r.mz, s.nb);
+    d.bsolid.assign(r.sowner.begin(), r.sowner.end());
+    for (const BodyEntry& e : r.bodies)
+      if (e.info.active) d.bsolid.insert(d.bsolid.end(), e.reference.size(), static_cast<std::int32_t>(e.info.solid));
   } else if (fields.boundary) {
     d.bx = s.boundary_host.x;
     d.by = s.boundary_host.y;
     d.bz = s.boundary_host.z;
+    d.bsolid.assign(s.static_boundary.solid.begin(), s.static_boundary.solid.end());
   }
   if (fields.wall_pressure && s.rigid && s.rigid->wall_pressure) d.bp = s.take_wall_pressure();
   d.bodies = body_states();

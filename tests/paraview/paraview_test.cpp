@@ -119,7 +119,7 @@ std::vector<double> column(const std::vector<Vec3d>& v, int k) {
 }
 
 // Every time of the index against the frames: fluid with its fields, boundary
-// particles with their wall pressure, bodies' poses.
+// particles with their solids and wall pressure, bodies' poses.
 void expect_frames(const Seen& seen, const std::string& out) {
   ASSERT_EQ(seen.times.size(), static_cast<std::size_t>(kFrames)) << seen.text;
   for (int f = 0; f < kFrames; ++f) {
@@ -133,6 +133,7 @@ void expect_frames(const Seen& seen, const std::string& out) {
     expect_field(seen, f, "fluid", "id", {doubles(d.id)});
     expect_points(seen, f, "boundary", d.bx, d.by, d.bz);
     expect_field(seen, f, "boundary", "wall_pressure", {doubles(d.bp)});
+    expect_field(seen, f, "boundary", "solid", {doubles(d.bsolid)});
     ASSERT_EQ(d.bodies.size(), 1u);
     const auto* b = seen.find(fmt::format("block {} bodies", f));
     ASSERT_TRUE(b) << seen.text;

@@ -5,6 +5,7 @@
 // sensors off any face, on a body or misnamed are one-line input errors.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <numeric>
 
@@ -162,7 +163,8 @@ TEST(Sensors, AFloorAndTwoWallsReadTheWaterAtRest) {
 // samples: measured +0.5%, held within 1%); the walls' rows read rho0 g (H - z) with
 // the gradient rho0 g (a fit over the rows 0.025-0.175 m high, both walls facing x:
 // within 3%, measured +1.0%); particles above the water read exactly 0, and frame 0,
-// before any step, 0 everywhere. bw-sim's run index gives ParaView the field.
+// before any step, 0 everywhere. bw-sim's run index gives ParaView the field and each
+// particle's solid; bw-measure wall reads the peak and the loaded patches.
 TEST(Sensors, TheWallPressureFieldReadsTheWaterAtRest) {
   const test::TempDir& dir = column_run();
   const RunRecord run = read_run(dir.file("out/run.h5"));
@@ -206,10 +208,51 @@ TEST(Sensors, TheWallPressureFieldReadsTheWaterAtRest) {
   EXPECT_NEAR(-slope / (kRho0 * kG), 1.0, 0.03);
   EXPECT_EQ(above_max, 0.0);
 
+  // bw-measure wall: per frame the peak over the column's patches, where, and the mean
+  // over the loaded ones. At rest the peak is on the floor at about rho0 g H (the
+  // highest of the floor's 100 patches, which vary by a few per cent as the bottom layer
+  // settles: measured +4.2%, held within 10%), and the loaded patches are the
+  // wetted floor and walls (100 + 4 x 200 particles, the edges' rows and the rows just
+  // above the water, within h of it: at most a quarter more).
+  const auto wall = test::run(test::tool("bw-measure") + " wall " + dir.file("out/frames") + " --solid column");
+  ASSERT_EQ(wall.exit_code, 0) << wall.err;
+  EXPECT_EQ(wall.out.rfind("time,peak,x,y,z,mean,loaded\n0,nan,nan,nan,nan,nan,0\n", 0), 0u) << wall.out.substr(0, 200);
+  ASSERT_EQ(test::line_count(wall.out), 32);
+  const std::string last = wall.out.substr(wall.out.rfind("\n", wall.out.size() - 2) + 1);
+  double t = 0, peak = 0, px = 0, py = 0, pz = 0, mean = 0, loaded = 0;
+  ASSERT_EQ(std::sscanf(last.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf", &t, &peak, &px, &py, &pz, &mean, &loaded), 7) << last;
+  test::figure("peak wall pressure at 1.5 s over rho0 g H", peak / (kRho0 * kG * kDepth) - 1, "");
+  test::figure("loaded patches", loaded, "");
+  EXPECT_NEAR(t, 1.5, 1e-9);
+  EXPECT_NEAR(peak / (kRho0 * kG * kDepth), 1.0, 0.10);
+  EXPECT_LT(pz, 0.0) << "on the floor";
+  EXPECT_GE(loaded, 900);
+  EXPECT_LE(loaded, 1125);
+  EXPECT_GT(mean, 0.0);
+  EXPECT_LT(mean, peak);
+  // A solid the run has not, and frames without the field: one line each, exit 2.
+  const auto unknown = test::run(test::tool("bw-measure") + " wall " + dir.file("out/frames") + " --solid tank");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.err.find("--solid 'tank': "), std::string::npos) << unknown.err;
+  EXPECT_NE(unknown.err.find("has no such solid (column)"), std::string::npos) << unknown.err;
+  test::TempDir bare;
+  FrameData plain = read_frame(frame_file_name(dir.file("out/frames"), 30));
+  plain.bp.clear();
+  std::filesystem::create_directory(bare.file("frames"));
+  write_frame(plain, frame_file_name(bare.file("frames"), 30));
+  const auto without = test::run(test::tool("bw-measure") + " wall " + bare.file("frames") + " --solid column --run " +
+                                 dir.file("out/run.h5"));
+  EXPECT_EQ(without.exit_code, 2);
+  EXPECT_NE(without.err.find("000030.h5: holds no wall pressure; add \"wall_pressure\" to the scene's [output] fields"),
+            std::string::npos)
+      << without.err;
+  EXPECT_EQ(test::line_count(without.err), 1) << without.err;
+
   std::ifstream index(dir.file("out/run.xdmf2"));
   const std::string xml((std::istreambuf_iterator<char>(index)), std::istreambuf_iterator<char>());
   EXPECT_NE(xml.find("<Attribute Name=\"wall_pressure\""), std::string::npos);
   EXPECT_NE(xml.find("frames/000030.h5:/Step#0/boundary/p"), std::string::npos);
+  EXPECT_NE(xml.find("frames/000030.h5:/Step#0/boundary/solid"), std::string::npos);
 }
 
 // A sensor's weights over a flat face of particles: they add up to 1 / spacing^2 (a

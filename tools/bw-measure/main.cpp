@@ -1,6 +1,7 @@
 // bw-measure: measurements on simulated frames, for validation and for users who
 // compare with experiments: dam-break front and residual height, pressure and
-// velocity probes, pressure sensors on solids' faces, loads on solids, wave gauges.
+// velocity probes, pressure sensors on solids' faces, loads on solids, the pressure
+// on a solid's surface, wave gauges.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -39,8 +40,9 @@ struct Options {
   std::vector<double> normal{1, 0, 0};
   double h = 0, offset = -1, rho0 = 998;
   std::vector<double> gravity{0, 0, -9.81};
-  // loads
+  // loads and wall
   std::string solid;
+  std::string run;  // wall: the run file (default FRAMES/../run.h5)
   // sensors
   std::vector<std::string> names;
   double window = 0;
@@ -244,6 +246,28 @@ int run_sensors(const Options& o) {
   return bw::kExitOk;
 }
 
+// The wall pressure on one solid, frame by frame: its peak and where, the mean over the
+// loaded patches and how many there are.
+int run_wall(const Options& o) {
+  const std::string run_path = o.run.empty() ? o.frames + "/../run.h5" : o.run;
+  const bw::RunRecord run = bw::read_run(run_path);
+  int solid = -1;
+  std::string names;
+  for (std::size_t k = 0; k < run.solids.size(); ++k) {
+    if (run.solids[k].name == o.solid) solid = static_cast<int>(k);
+    names += (k ? ", " : "") + run.solids[k].name;
+  }
+  if (solid < 0) bw::fail_input("--solid '{}': {} has no such solid ({})", o.solid, run_path, names);
+  std::vector<std::vector<double>> rows;
+  for (const std::string& path : list_frames(o.frames)) {
+    const bw::FrameData frame = bw::read_frame(path);
+    const bw::analysis::WallLoad w = bw::analysis::wall_load(frame, solid, path);
+    rows.push_back({frame.time, w.peak, w.at.x(), w.at.y(), w.at.z(), w.mean, static_cast<double>(w.loaded)});
+  }
+  print_rows(o, {"time", "peak", "x", "y", "z", "mean", "loaded"}, rows, nullptr);
+  return bw::kExitOk;
+}
+
 int run_sensor(const Options& o) {
   const Eigen::Vector3d normal(o.normal[0], o.normal[1], o.normal[2]);
   if (!(normal.norm() > 0)) bw::fail_input("--normal: must not be zero");
@@ -288,7 +312,8 @@ int main(int argc, char** argv) {
                  "  bw-measure sensor out/frames --at P1=0.8245,0.471,0.021 --at P2=0.8245,0.471,0.061 \\\n"
                  "      --normal 1,0,0 --radius 0.01 --h 0.04\n"
                  "  bw-measure loads out/run.h5 --solid box\n"
-                 "  bw-measure sensors out/run.h5 --sensor P1 --window 0.005\n");
+                 "  bw-measure sensors out/run.h5 --sensor P1 --window 0.005\n"
+                 "  bw-measure wall out/frames --solid house\n");
   app.require_subcommand(1);
   Options o;
   auto frames_option = [&](CLI::App* sub) {
@@ -345,6 +370,14 @@ int main(int argc, char** argv) {
   loads->add_option("--solid", o.solid, "The solid's name (its [[solid]] name)")->required();
   loads->add_flag("--json", o.json, "Print JSON instead of CSV");
 
+  CLI::App* wall = app.add_subcommand(
+      "wall", "The pressure on a solid's surface from the frames' wall pressure: its peak (Pa) and where, the mean over "
+              "the loaded patches");
+  frames_option(wall);
+  wall->add_option("--solid", o.solid, "The solid's name (its [[solid]] name; its bodies and fragments count)")
+      ->required();
+  wall->add_option("--run", o.run, "Run file, for the solids' names (default: FRAMES/../run.h5)");
+
   CLI::App* sensors = app.add_subcommand(
       "sensors", "Pressure histories of the scene's [[sensor]]s, from the forces on the faces (Pa, from the run file)");
   sensors->add_option("run", o.frames, "Run file (OUTDIR/run.h5 of bw-sim, of a scene with [[sensor]] tables)")
@@ -376,6 +409,7 @@ int main(int argc, char** argv) {
     if (sensor->parsed()) return run_sensor(o);
     if (loads->parsed()) return run_loads(o);
     if (sensors->parsed()) return run_sensors(o);
+    if (wall->parsed()) return run_wall(o);
     return run_gauge(o);
   });
 }
