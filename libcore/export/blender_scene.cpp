@@ -4,25 +4,14 @@
 
 #include "bw_export_scripts/embedded.h"
 #include "common/error.h"
+#include "common/text.h"
 
 namespace bw::exporter {
 namespace {
 
-// Python literals.
+// Python literals (a JSON string is one too).
 std::string number(double v) { return fmt::format("{}", v); }  // shortest that reads back the same
 std::string vec3(const Vec3d& v) { return fmt::format("[{}, {}, {}]", number(v.x()), number(v.y()), number(v.z())); }
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '\\' || c == '"') out += '\\';
-    if (c == '\n') {
-      out += "\\n";
-      continue;
-    }
-    out += c;
-  }
-  return out + "\"";
-}
 
 }  // namespace
 
@@ -41,7 +30,7 @@ std::string blender_scene_script(const BlenderSceneSettings& s) {
              "\"sky_color\": {}}},\n"
              "    \"light\": {{\"direction\": {}, \"color\": {}, \"intensity\": {}, \"ambient\": {}}},\n"
              "}}\n\n",
-             quoted(s.source.empty() ? std::string("a run") : s.source), number(s.frame_rate), s.first, s.last,
+             json_quote(s.source.empty() ? std::string("a run") : s.source), number(s.frame_rate), s.first, s.last,
              s.up == Up::kY ? "y" : "z", look.width, look.height, vec3(look.fluid_color), vec3(look.absorption),
              vec3(look.sky_color), vec3(look.light.direction), vec3(look.light.color), number(look.light.intensity),
              number(look.light.ambient)) +

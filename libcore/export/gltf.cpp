@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "common/text.h"
 #include "io/particles_file.h"
 
 namespace bw::exporter {
@@ -20,16 +21,6 @@ constexpr double kBodyColor[3] = {0.6, 0.4, 0.3};
 // glTF's component and target codes.
 constexpr int kFloat = 5126, kUnsignedInt = 5125;
 constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
-
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (unsigned char c : s) {
-    if (c == '"' || c == '\\') out += '\\', out += static_cast<char>(c);
-    else if (c < 0x20) out += fmt::format("\\u{:04x}", c);
-    else out += static_cast<char>(c);
-  }
-  return out + "\"";
-}
 
 std::string number(double v) { return fmt::format("{}", v); }
 
@@ -204,7 +195,7 @@ std::vector<std::uint8_t> build_glb(const SolidSet& solids, const std::vector<Po
     if (run.solids[s].body >= 0 || solids.solid_meshes[s].triangles.empty()) continue;
     const int mesh = add_mesh(solids.solid_meshes[s], Vec3d::Zero(), 0);
     nodes.push_back(fmt::format("{{\"name\":{},\"mesh\":{},\"extras\":{{\"solid\":{},\"kind\":\"static\"}}}}",
-                                json_string(run.solids[s].name), mesh, s));
+                                json_quote(run.solids[s].name), mesh, s));
     ++stats.static_nodes;
   }
 
@@ -242,7 +233,7 @@ std::vector<std::uint8_t> build_glb(const SolidSet& solids, const std::vector<Po
                     number(body.created_time));
     if (at_rest || times < 0) {
       const Vec3d c = to_gltf(body.reference_center);
-      nodes.push_back(fmt::format("{{\"name\":{},\"mesh\":{},\"translation\":[{},{},{}],{}}}", json_string(body.name),
+      nodes.push_back(fmt::format("{{\"name\":{},\"mesh\":{},\"translation\":[{},{},{}],{}}}", json_quote(body.name),
                                   mesh, number(c.x()), number(c.y()), number(c.z()), extras));
       ++stats.body_nodes;
       continue;
@@ -277,7 +268,7 @@ std::vector<std::uint8_t> build_glb(const SolidSet& solids, const std::vector<Po
     const auto r0 = to_gltf(p[*first_seen]->orientation);
     const std::string s0 = p.front() ? "" : ",\"scale\":[0,0,0]";
     nodes.push_back(fmt::format("{{\"name\":{},\"mesh\":{},\"translation\":[{},{},{}],\"rotation\":[{},{},{},{}]{},{}}}",
-                                json_string(body.name), mesh, number(t0.x()), number(t0.y()), number(t0.z()),
+                                json_quote(body.name), mesh, number(t0.x()), number(t0.y()), number(t0.z()),
                                 number(r0[0]), number(r0[1]), number(r0[2]), number(r0[3]), s0, extras));
     ++stats.body_nodes;
   }
@@ -368,7 +359,7 @@ std::vector<std::uint8_t> build_glb(const SolidSet& solids, const std::vector<Po
       "{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"breakwater bw-export\",\"extras\":{{\"source\":{},"
       "\"up\":\"breakwater z is glTF y; breakwater (x, y, z) is glTF (x, z, -y)\",\"frames\":{}}}}},"
       "\"scene\":0,\"scenes\":[{{\"name\":\"breakwater\",\"nodes\":[{}]}}],\"nodes\":[{}],",
-      json_string(source), range, scene_nodes, join(nodes));
+      json_quote(source), range, scene_nodes, join(nodes));
   json += cameras;
   if (!meshes.empty()) {
     json += fmt::format("\"meshes\":[{}],\"materials\":[{},{}],", join(meshes), material("static", kStaticColor),

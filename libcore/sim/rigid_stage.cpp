@@ -154,7 +154,7 @@ void Solver::Impl::upload_layout() {
   RigidStage& r = *rigid;
   // The static particles' wall pressure so far stays; the bodies' starts again.
   const std::vector<float> static_wall =
-      r.wall_allocated ? ctx.read_vector<float>(r.wall_integral, r.ns) : std::vector<float>(r.ns, 0.0f);
+      r.wall_integral.valid() ? ctx.read_vector<float>(r.wall_integral, r.ns) : std::vector<float>(r.ns, 0.0f);
   // Master order: static particles, then each body's in index order.
   std::uint32_t total = r.ns;
   for (BodyEntry& e : r.bodies) {
@@ -183,7 +183,7 @@ void Solver::Impl::upload_layout() {
     r.keys_tmp = uints(cap, "boundary keys (sort scratch)");
     r.order_tmp = uints(cap, "boundary order (sort scratch)");
     r.rank = uints(cap, "boundary rank");
-    r.wall_allocated = false;
+    r.wall_integral = Buffer{};  // reallocated by reset_wall_pressure
     bx = floats(cap, "boundary x");
     by = floats(cap, "boundary y");
     bz = floats(cap, "boundary z");
@@ -635,10 +635,8 @@ void Solver::Impl::sample_sensors(double t0, double t1) {
 
 void Solver::Impl::reset_wall_pressure(const std::vector<float>& static_part) {
   RigidStage& r = *rigid;
-  if (!r.wall_allocated) {
+  if (!r.wall_integral.valid())
     r.wall_integral = floats(std::max(r.capacity, 1u), "boundary wall pressure (master order)");
-    r.wall_allocated = true;
-  }
   std::vector<float> integral(r.nb, 0.0f);
   std::copy(static_part.begin(), static_part.begin() + std::min<std::size_t>(static_part.size(), r.nb), integral.begin());
   if (!integral.empty()) ctx.write_vector(r.wall_integral, integral);

@@ -119,7 +119,7 @@ struct RigidStage {
   // (a fracture re-lays their master order), over these times (s).
   Kernel wall_integrate;
   Buffer wall_integral;
-  bool wall_pressure = false, wall_allocated = false;
+  bool wall_pressure = false;
   double wall_static_time = 0, wall_body_time = 0;
 };
 
