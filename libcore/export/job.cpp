@@ -119,7 +119,7 @@ ExportPlan plan_export(const ExportJob& job) {
           render::frame_camera(c.path, c.track, f.time,
                                c.track.id >= 0 ? read_frame_header(f.path, true).bodies : BodyStates{}, f.path);
     } else {
-      plan.camera_fit = look;  // fitted by run_export, from the solids it reads
+      plan.fit_camera = true;  // by run_export, from the solids it reads
     }
   }
 
@@ -149,15 +149,15 @@ ExportReport run_export(const ExportJob& job, const std::function<void(const Exp
   if (plan.solids) solids = SolidSet::load(plan.run_path, plan.fragments_path);
   std::optional<GltfCamera> camera = plan.camera;
   report.camera_source = plan.camera_source;
-  if (plan.camera_fit) {
+  if (plan.fit_camera) {
     // No [camera]: the one bw-render fits to the reference frame, from the same
     // frames, solids and look, so Blender sees what the images show.
     const render::SolidScene scene = render::SolidScene::from(solids.run, solids.solid_meshes, solids.fragments,
                                                               {plan.run_path, plan.fragments_path}, {});
     const render::Framing framing = render::frame_sequence(
-        render::reference_frame_candidates(require_frame_files(job.frames_dir)), *plan.camera_fit, scene);
+        render::reference_frame_candidates(require_frame_files(job.frames_dir)), plan.look, scene);
     camera = GltfCamera{render::CameraPath::fixed(framing.camera),
-                        static_cast<double>(plan.camera_fit->width) / plan.camera_fit->height};
+                        static_cast<double>(plan.look.width) / plan.look.height};
     report.camera_source = fmt::format("the fit to {} (as bw-render's)", framing.reference_frame);
   }
   if (camera) {

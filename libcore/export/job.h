@@ -47,9 +47,9 @@ struct ExportPlan {
   double frame_rate = 30;                // the run's frames per second
   std::optional<GltfCamera> camera;      // the scene's camera, when solids.glb gets one
   std::string camera_source;             // the scene it came from
-  // Without a [camera]: the look that bw-render fits its camera with, to fit the same
-  // one from the solids run_export reads.
-  std::optional<render::RenderSettings> camera_fit;
+  // Without a [camera]: bw-render's camera, fitted with `look` by run_export from the
+  // solids it reads.
+  bool fit_camera = false;
   std::string spacing_source;            // where the spacing came from
 };
 ExportPlan plan_export(const ExportJob& job);
