@@ -412,7 +412,9 @@ __kernel void sensor_pressure(uint count, __global const uint* first, __global c
 // [output] fields "wall_pressure": each boundary particle's patch pressure this step,
 // -F . n / spacing^2 (the fluid's and contacts' force F on it, its normal n out of its
 // solid, the patch spacing^2 it stands for), added to its time integral (Pa s), master
-// indices first + k for k < count.
+// indices first + k for k < count. A part thinner than a cell has no outward normal
+// (its faces' normals cancel, n = 0): there the water presses on one face or the
+// other, and the figure is |F| / spacing^2.
 __kernel void wall_pressure_integrate(uint first, uint count, float dt, __global const float* fx,
                                       __global const float* fy, __global const float* fz,
                                       __global const float* mnx, __global const float* mny,
@@ -422,5 +424,8 @@ __kernel void wall_pressure_integrate(uint first, uint count, float dt, __global
   if (k >= count) return;
   const uint m = first + k;
   const float s = owners[mowner[m]].spacing;
-  integral[m] -= dt * (fx[m] * mnx[m] + fy[m] * mny[m] + fz[m] * mnz[m]) / (s * s);
+  const float n2 = mnx[m] * mnx[m] + mny[m] * mny[m] + mnz[m] * mnz[m];
+  const float push = n2 > 0.0f ? -(fx[m] * mnx[m] + fy[m] * mny[m] + fz[m] * mnz[m])
+                               : sqrt(fx[m] * fx[m] + fy[m] * fy[m] + fz[m] * fz[m]);
+  integral[m] += dt * push / (s * s);
 }
