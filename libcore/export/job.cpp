@@ -64,8 +64,7 @@ ExportPlan plan_export(const ExportJob& job) {
     if (plan.water_options.spacing > 0) {
       plan.spacing_source = "--spacing";
     } else {
-      for (const auto& [name, value] : run.parameters)
-        if (name == "spacing") plan.water_options.spacing = value;
+      plan.water_options.spacing = run.parameter("spacing").value_or(0);
       if (!(plan.water_options.spacing > 0)) {
         if (plan.run_path.empty())
           fail_input("{}: no run file beside the frames to take the particle spacing from; give --run or --spacing",

@@ -48,6 +48,19 @@ BodyStates read_bodies(const h5::Group& g) {
   return b;
 }
 
+void read_boundary_and_bodies(const h5::Group& step, FrameData& f) {
+  if (step.is_group("boundary")) {
+    const h5::Group b = step.open_group("boundary");
+    std::size_t k = 0;
+    f.bx = b.read_rows<float>("x", 0, &k);
+    read_optional(b, "y", k, f.by);
+    read_optional(b, "z", k, f.bz);
+    read_optional(b, "p", k, f.bp);
+    read_optional(b, "solid", k, f.bsolid);
+  }
+  if (step.is_group("bodies")) f.bodies = read_bodies(step.open_group("bodies"));
+}
+
 }  // namespace
 
 FrameFields FrameData::fields() const {
@@ -146,16 +159,17 @@ FrameData read_frame(const std::string& path) {
   read_optional(step, "rho", n, f.rho);
   read_optional(step, "p", n, f.p);
   read_optional(step, "id", n, f.id);
-  if (step.is_group("boundary")) {
-    const h5::Group b = step.open_group("boundary");
-    std::size_t k = 0;
-    f.bx = b.read_rows<float>("x", 0, &k);
-    read_optional(b, "y", k, f.by);
-    read_optional(b, "z", k, f.bz);
-    read_optional(b, "p", k, f.bp);
-    read_optional(b, "solid", k, f.bsolid);
-  }
-  if (step.is_group("bodies")) f.bodies = read_bodies(step.open_group("bodies"));
+  read_boundary_and_bodies(step, f);
+  return f;
+}
+
+FrameData read_frame_boundary(const std::string& path) {
+  h5::File file = h5::File::open(path, kKind);
+  const h5::Group& root = file.root();
+  FrameData f;
+  f.frame = root.attr<std::int32_t>("frame");
+  f.time = root.attr<double>("time");
+  read_boundary_and_bodies(open_step(file, f.frame), f);
   return f;
 }
 

@@ -60,6 +60,10 @@ void write_frame(const FrameData& frame, const std::string& path);
 // when it is not a frame or its arrays disagree in length.
 FrameData read_frame(const std::string& path);
 
+// The same without the fluid's arrays: frame, time, the boundary's and the bodies'
+// (what a look at the solids needs, a fraction of the file where the water is large).
+FrameData read_frame_boundary(const std::string& path);
+
 // What a frame file holds, without its particles: for indexes and listings.
 struct FrameHeader {
   std::int32_t frame = 0;

@@ -159,6 +159,12 @@ void write_run(const RunRecord& run, const std::string& path) {
   file.commit();
 }
 
+std::optional<double> RunRecord::parameter(const std::string& name) const {
+  for (const auto& [key, value] : parameters)
+    if (key == name) return value;
+  return std::nullopt;
+}
+
 RunRecord read_run(const std::string& path) {
   h5::File file = h5::File::open(path, kKind);
   const h5::Group& root = file.root();

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -97,6 +98,8 @@ struct RunRecord {
   // Derived values the simulator used (particle mass, smoothing length, stiffness,
   // ...), by name, so that a run can be understood and reproduced from its output.
   std::vector<std::pair<std::string, double>> parameters;
+  // The parameter of that name (/parameters/NAME), if the run has it.
+  std::optional<double> parameter(const std::string& name) const;
   // The run so far at its last written frame, by name: run time next to its error
   // indicators (worst density error, energy drift, particles lost), so that a run's
   // cost and quality read from one place (docs/formats.md lists the names).

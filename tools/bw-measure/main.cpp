@@ -260,7 +260,7 @@ int run_wall(const Options& o) {
   if (solid < 0) bw::fail_input("--solid '{}': {} has no such solid ({})", o.solid, run_path, names);
   std::vector<std::vector<double>> rows;
   for (const std::string& path : list_frames(o.frames)) {
-    const bw::FrameData frame = bw::read_frame(path);
+    const bw::FrameData frame = bw::read_frame_boundary(path);
     const bw::analysis::WallLoad w = bw::analysis::wall_load(frame, solid, path);
     rows.push_back({frame.time, w.peak, w.at.x(), w.at.y(), w.at.z(), w.mean, static_cast<double>(w.loaded)});
   }
