@@ -44,6 +44,7 @@
   X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                 \
   X(PFNGLPROGRAMUNIFORM1IPROC, ProgramUniform1i)                     \
   X(PFNGLPROGRAMUNIFORM1FPROC, ProgramUniform1f)                     \
+  X(PFNGLPROGRAMUNIFORM1UIPROC, ProgramUniform1ui)                   \
   X(PFNGLPROGRAMUNIFORM2FPROC, ProgramUniform2f)                     \
   X(PFNGLPROGRAMUNIFORM2IPROC, ProgramUniform2i)                     \
   X(PFNGLPROGRAMUNIFORM3FPROC, ProgramUniform3f)                     \
@@ -58,6 +59,7 @@
   X(PFNGLVERTEXARRAYVERTEXBUFFERPROC, VertexArrayVertexBuffer)       \
   X(PFNGLENABLEVERTEXARRAYATTRIBPROC, EnableVertexArrayAttrib)       \
   X(PFNGLVERTEXARRAYATTRIBFORMATPROC, VertexArrayAttribFormat)       \
+  X(PFNGLVERTEXARRAYATTRIBIFORMATPROC, VertexArrayAttribIFormat)     \
   X(PFNGLVERTEXARRAYATTRIBBINDINGPROC, VertexArrayAttribBinding)     \
   X(PFNGLCREATETEXTURESPROC, CreateTextures)                         \
   X(PFNGLDELETETEXTURESPROC, DeleteTextures)                         \

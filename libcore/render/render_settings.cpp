@@ -236,6 +236,16 @@ std::optional<View> parse_view(const std::string& name) {
   return std::nullopt;
 }
 
+std::optional<SolidColoring> parse_solid_coloring(const std::string& name) {
+  if (name == "shaded") return SolidColoring::kShaded;
+  if (name == "wall_pressure") return SolidColoring::kWallPressure;
+  return std::nullopt;
+}
+
+const char* solid_coloring_name(SolidColoring coloring) {
+  return coloring == SolidColoring::kWallPressure ? "wall_pressure" : "shaded";
+}
+
 // Largest image side: beyond this the framebuffers of one frame would need more
 // than a gigabyte, which no one wants from a preview tool.
 constexpr int kMaxImageSide = 16384;
@@ -272,6 +282,9 @@ void RenderSettings::validate(const std::string& where) const {
   check(unit_color(ground_color), where, "render.ground_color", "components must lie in [0, 1]");
   check(unit_color(solid_color), where, "render.solid_color", "components must lie in [0, 1]");
   check(unit_color(body_color), where, "render.body_color", "components must lie in [0, 1]");
+  if (pressure_range)
+    check(pressure_range->max > pressure_range->min, where, "render.pressure_range",
+          fmt::format("[{}, {}]: the second value must be above the first", pressure_range->min, pressure_range->max));
 }
 
 RenderSettings parse_render_settings(const std::string& toml_text, const std::string& name) {
@@ -336,6 +349,21 @@ RenderSettings parse_render_settings(const std::string& toml_text, const std::st
     r.vec3("ground_color", s.ground_color);
     r.vec3("solid_color", s.solid_color);
     r.vec3("body_color", s.body_color);
+    r.text("solids", [&](const std::string& v) {
+      auto c = parse_solid_coloring(v);
+      if (!c) r.fail("solids", fmt::format("'{}' is not one of shaded, wall_pressure", v));
+      s.solids = *c;
+    });
+    r.node("pressure_range", [&](const toml::node& n) {
+      const toml::array* a = n.as_array();
+      if (!a || a->size() != 2 || !a->get(0)->is_number() || !a->get(1)->is_number())
+        r.fail("pressure_range", "expected an array of 2 numbers [min, max] (Pa)");
+      const double lo = a->get(0)->value<double>().value(), hi = a->get(1)->value<double>().value();
+      if (!std::isfinite(lo) || !std::isfinite(hi)) r.fail("pressure_range", "expected finite numbers");
+      s.pressure_range = ValueRange{lo, hi};
+    });
+    r.boolean("legend", s.legend);
+    r.boolean("water", s.water);
     r.read();
   }
   s.validate(name);

@@ -37,6 +37,17 @@ const char* filter_name(Filter filter);
 enum class View { kShaded, kDepth, kThickness, kNormals };
 std::optional<View> parse_view(const std::string& name);
 
+// What colours the solids: their own colours, or the pressure on their faces (the
+// frames' wall_pressure field; render/wall_paint.h). "shaded", "wall_pressure".
+enum class SolidColoring { kShaded, kWallPressure };
+std::optional<SolidColoring> parse_solid_coloring(const std::string& name);
+const char* solid_coloring_name(SolidColoring coloring);
+
+// A value range [min, max] (Pa for a pressure).
+struct ValueRange {
+  double min = 0, max = 0;
+};
+
 struct RenderSettings {
   int width = 1280;
   int height = 720;
@@ -94,6 +105,14 @@ struct RenderSettings {
   Vec3d body_color = Vec3d(0.5, 0.22, 0.13);     // dynamic solids and fragments
 
   View view = View::kShaded;
+
+  // The solids coloured by the pressure on their faces, on a colour scale over
+  // pressure_range (empty: from the frames, wall_paint.h's wall_pressure_range), with
+  // a colour bar when `legend`. Without the water (water = false) nothing hides them.
+  SolidColoring solids = SolidColoring::kShaded;
+  std::optional<ValueRange> pressure_range;
+  bool legend = true;
+  bool water = true;
 
   // Throws InputError "<where>: <key>: <problem>" for a value out of range.
   void validate(const std::string& where = "settings") const;

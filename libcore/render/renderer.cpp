@@ -47,6 +47,8 @@ constexpr double kBilateralRangeRatio = 1.0;
 constexpr int kGuardPixels = 16;
 // Eye distance where there is no fluid (shaders/common.glsl kNoFluid).
 constexpr float kNoFluid = 1e30f;
+// Entries of the colour map the shader interpolates between (wall_paint.h).
+constexpr int kPaintColors = 256;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -245,7 +247,8 @@ struct Renderer::Impl {
       shadow_fluid_fb, shadow_blur_fb[2];
   GLuint smoothed = 0;  // the texture holding the smoothed depth after the last render
 
-  Buffer uniforms, particles, foam, solid_vertices, ground_vertices;
+  Buffer uniforms, particles, foam, solid_vertices, solid_rows, ground_vertices;
+  Buffer paint_points, paint_cells, paint_start, paint_colors;
   GLuint vao_empty = 0, vao_mesh = 0, vao_ground = 0;
 
   bool profiling = false;
@@ -262,6 +265,7 @@ struct Renderer::Impl {
 
   void build();
   void set_mesh_layout(GLuint vao, GLuint buffer);
+  void set_paint(const RenderInput& in);
   void draw_triangles(GLuint vao, std::size_t vertex_count);
 };
 
@@ -272,6 +276,25 @@ void Renderer::Impl::set_mesh_layout(GLuint vao, GLuint buffer) {
     gl::VertexArrayAttribFormat(vao, a, 3, GL_FLOAT, GL_FALSE, a * 3 * sizeof(float));
     gl::VertexArrayAttribBinding(vao, a, 0);
   }
+}
+
+void Renderer::Impl::set_paint(const RenderInput& in) {
+  const bool paint = settings.solids == SolidColoring::kWallPressure && in.paint;
+  mesh.set("u_paint", paint ? 1 : 0);
+  if (!paint) return;
+  const PaintTable& t = *in.paint;
+  paint_points.upload(t.points.data(), t.points.size() * sizeof(float));
+  paint_cells.upload(t.cells.data(), t.cells.size() * sizeof(std::int32_t));
+  paint_start.upload(t.start.data(), t.start.size() * sizeof(std::uint32_t));
+  mesh.set("u_paint_reach", t.reach);
+  gl::ProgramUniform1ui(mesh.id(), gl::GetUniformLocation(mesh.id(), "u_paint_mask"), t.mask);
+  gl::ProgramUniform2f(mesh.id(), gl::GetUniformLocation(mesh.id(), "u_paint_range"),
+                       static_cast<float>(in.paint_scale.min), static_cast<float>(in.paint_scale.max));
+  mesh.set("u_paint_colors", kPaintColors);
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, paint_points.id);
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, paint_cells.id);
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, paint_start.id);
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, paint_colors.id);
 }
 
 void Renderer::Impl::build() {
@@ -330,6 +353,13 @@ void Renderer::Impl::build() {
   gl::CreateVertexArrays(1, &vao_ground);
   set_mesh_layout(vao_mesh, solid_vertices.id);
   set_mesh_layout(vao_ground, ground_vertices.id);
+  // The solids' rows (wall_paint.h), an integer per vertex from a second buffer.
+  gl::VertexArrayVertexBuffer(vao_mesh, 1, solid_rows.id, 0, sizeof(std::int32_t));
+  gl::EnableVertexArrayAttrib(vao_mesh, 3);
+  gl::VertexArrayAttribIFormat(vao_mesh, 3, 1, GL_INT, 0);
+  gl::VertexArrayAttribBinding(vao_mesh, 3, 1);
+  const std::vector<float> colors = paint_colors_linear(kPaintColors);
+  paint_colors.upload(colors.data(), colors.size() * sizeof(float));
   float range[2] = {1, 64};
   gl::GetFloatv(GL_POINT_SIZE_RANGE, range);
   max_point_size = range[1];
@@ -413,6 +443,9 @@ Image Renderer::render(const RenderInput& in) {
   if (in.solids && !in.solids->vertices.empty()) {
     r.solid_vertices.upload(in.solids->vertices.data(), in.solids->vertices.size() * sizeof(float));
     solid_vertex_count = in.solids->vertices.size() / 9;
+    std::vector<std::int32_t> rows = in.solids->solid;
+    rows.resize(solid_vertex_count, -1);
+    r.solid_rows.upload(rows.data(), rows.size() * sizeof(std::int32_t));
     const Aabb b = in.solids->bounds();
     if (!b.empty()) content.add(b.min), content.add(b.max);
   }
@@ -602,6 +635,7 @@ Image Renderer::render(const RenderInput& in) {
   gl::BindTextureUnit(5, r.shadow_thickness.id);
   gl::BindTextureUnit(6, r.shadow_front.id);
   r.mesh.use();
+  r.set_paint(in);
   r.mesh.set("u_is_ground", 1);
   r.draw_triangles(r.vao_ground, ground.size() / 9);
   r.mesh.set("u_is_ground", 0);

@@ -31,6 +31,7 @@
 #include "render/image.h"
 #include "render/render_settings.h"
 #include "render/solids.h"
+#include "render/wall_paint.h"
 
 namespace bw::render {
 
@@ -41,6 +42,9 @@ struct RenderInput {
   const float* z = nullptr;
   std::size_t count = 0;
   const TriangleSoup* solids = nullptr;   // may be null
+  // With settings.solids = wall_pressure: the frame's table and the colour scale.
+  const PaintTable* paint = nullptr;
+  ColorScale paint_scale;
   Camera camera;
   double particle_radius = 0.01;          // sphere radius (m), > 0
   // Thickness is scaled by (particle volume) / (sphere volume) so that a block of

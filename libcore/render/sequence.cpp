@@ -14,10 +14,12 @@
 #include "io/frame_file.h"
 #include "io/frame_range.h"
 #include "io/h5.h"
+#include "io/run_file.h"
 #include "render/camera.h"
 #include "render/framing.h"
 #include "render/gl_context.h"
 #include "render/image.h"
+#include "render/legend.h"
 #include "render/particle_spacing.h"
 #include "render/renderer.h"
 #include "render/solids.h"
@@ -84,6 +86,7 @@ SequencePlan plan_sequence(const SequenceJob& job) {
   SequencePlan plan;
   const std::map<int, std::string> frames = require_frame_files(job.frames_dir);
   plan.reference_frames = reference_frame_candidates(frames);
+  for (const auto& [number, path] : frames) plan.folder_frames.push_back(path);
 
   const int first = job.range.first.value_or(frames.begin()->first);
   const int last = job.range.last.value_or(frames.rbegin()->first);
@@ -109,6 +112,21 @@ SequencePlan plan_sequence(const SequenceJob& job) {
 
   std::error_code ec;
   plan.run_path = job.run_path.empty() ? default_run_path(job.frames_dir) : job.run_path;
+  if (job.settings.solids == SolidColoring::kWallPressure) {
+    if (plan.run_path.empty())
+      fail_input("{}: colouring the solids by the wall pressure needs the run file (its solids and spacing); none "
+                 "beside the frames: give --run",
+                 job.frames_dir);
+    for (const FramePlan& f : plan.frames) {
+      const FrameHeader h = read_frame_header(f.path);
+      if (!h.fields.wall_pressure)
+        fail_input("{}: holds no wall pressure; add \"wall_pressure\" to the scene's [output] fields", f.path);
+      if (!h.fields.boundary_solid)
+        fail_input("{}: holds no boundary/solid, which tells each boundary particle's solid (bw-sim writes it from "
+                   "this version on): run the scene again",
+                   f.path);
+    }
+  }
 
   if (job.output_dir.empty()) fail_input("no output folder given (-o)");
   // Every check before the output folder is made: bad input leaves nothing behind.
@@ -141,6 +159,24 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
   if (settings.camera) report.camera_keys = settings.camera->keys().size();
   const Framing& framing = report.framing;
   const double radius = framing.particle_radius, spacing = framing.particle_spacing;
+
+  // The solids coloured by the wall pressure: one scale for the whole folder, so
+  // that every part of a sequence rendered in pieces has the same.
+  const bool paint = settings.solids == SolidColoring::kWallPressure;
+  double boundary_spacing = 0;
+  if (paint) {
+    boundary_spacing = read_run(plan.run_path).parameter("spacing").value_or(0);
+    if (!(boundary_spacing > 0)) fail_input("{}: /parameters/spacing is missing or not positive", plan.run_path);
+    if (settings.pressure_range) {
+      report.paint = PaintRange{};
+      report.paint->scale = {settings.pressure_range->min, settings.pressure_range->max};
+      report.paint_source = "render.pressure_range";
+    } else {
+      report.paint = wall_pressure_range(plan.folder_frames);
+      report.paint_source = fmt::format("the 1st to 99th percentile of the loaded patches of the folder's {} frames",
+                                        report.paint->frames);
+    }
+  }
 
   // A moving or tracking camera is placed and checked at every frame before anything
   // is drawn (a tracked body's centre from the frame's body states).
@@ -180,13 +216,21 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
     report.max_particles = std::max(report.max_particles, frame.fluid_count());
     RenderInput input;
     input.x = frame.x.data(), input.y = frame.y.data(), input.z = frame.z.data();
-    input.count = frame.fluid_count();
+    input.count = settings.water ? frame.fluid_count() : 0;
     input.solids = &soup;
+    PaintTable table;
+    if (paint) {
+      table = paint_table(frame, boundary_spacing, f.path);
+      input.paint = &table;
+      input.paint_scale = report.paint->scale;
+    }
     input.camera = frame_cameras[i];
     input.particle_radius = radius;
     input.particle_spacing = spacing;
     input.ground_height = framing.ground_height;
-    const Image image = renderer.render(input);
+    Image image = renderer.render(input);
+    if (paint && settings.legend)
+      draw_legend(image, input.paint_scale, pressure_unit(input.paint_scale.min, input.paint_scale.max));
     const std::vector<std::uint8_t> png = encode_png(image, {{"Software", "bw-render " BW_VERSION},
                                                              {"Title", fmt::format("frame {}, t = {:.6g} s", f.number, f.time)},
                                                              {"Comment", settings_text(input.camera)}});

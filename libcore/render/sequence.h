@@ -11,6 +11,7 @@
 #include "io/frame_range.h"
 #include "render/framing.h"
 #include "render/render_settings.h"
+#include "render/wall_paint.h"
 
 namespace bw::render {
 
@@ -49,13 +50,15 @@ struct FramePlan {
 };
 
 // What render_sequence will do, checked before any rendering: every frame of the
-// range exists and is a frame file, the output folder is writable, the run and
-// fragments files read. Throws InputError for bad input.
+// range exists and is a frame file (holding the wall pressure where the solids are
+// coloured by it), the output folder is writable, the run and fragments files read.
+// Throws InputError for bad input.
 struct SequencePlan {
   std::vector<FramePlan> frames;       // to render, in order
   // The folder's first frames, in order: the reference frame is the first of them
   // with enough particles (sequence.cpp).
   std::vector<std::string> reference_frames;
+  std::vector<std::string> folder_frames;  // every frame of the folder, in order
   std::string run_path;                // resolved; empty when none
   double fps = 30;
 };
@@ -81,6 +84,10 @@ struct SequenceReport {
   std::size_t solids = 0, fragments = 0;
   std::string video_path;
   double fps = 0;
+  // With the solids coloured by the wall pressure: the colour scale, and where it
+  // came from ("render.pressure_range", or the frames' pooled percentiles).
+  std::optional<PaintRange> paint;
+  std::string paint_source;
 };
 
 // Renders every frame of the plan to OUTPUT_DIR/NNNNNN.png (through temporary files)

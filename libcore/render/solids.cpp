@@ -22,8 +22,10 @@ Vec3d shade_of(const Vec3d& base, std::int32_t key) {
   return (base * (1.0 - kShadeSpread / 2 + kShadeSpread * u)).cwiseMin(1.0);
 }
 
-void append(TriangleSoup& soup, const TriMesh& mesh, const Eigen::Affine3d& pose, const Vec3d& color) {
+void append(TriangleSoup& soup, const TriMesh& mesh, const Eigen::Affine3d& pose, const Vec3d& color,
+            std::int32_t solid) {
   soup.vertices.reserve(soup.vertices.size() + 27 * mesh.triangles.size());
+  soup.solid.reserve(soup.solid.size() + 3 * mesh.triangles.size());
   for (const Triangle& t : mesh.triangles) {
     const Vec3d a = pose * mesh.vertices[t[0]], b = pose * mesh.vertices[t[1]], c = pose * mesh.vertices[t[2]];
     Vec3d n = (b - a).cross(c - a);
@@ -34,6 +36,7 @@ void append(TriangleSoup& soup, const TriMesh& mesh, const Eigen::Affine3d& pose
       for (int k = 0; k < 3; ++k) soup.vertices.push_back(static_cast<float>((*p)[k]));
       for (int k = 0; k < 3; ++k) soup.vertices.push_back(static_cast<float>(n[k]));
       for (int k = 0; k < 3; ++k) soup.vertices.push_back(static_cast<float>(color[k]));
+      soup.solid.push_back(solid);
     }
   }
 }
@@ -73,7 +76,10 @@ SolidScene SolidScene::from(const RunRecord& run, std::vector<TriMesh> solid_mes
                  run.bodies.size());
     scene.solids_.push_back(std::move(part));
   }
-  for (const BodyRecord& b : run.bodies) scene.body_centers_.push_back(b.reference_center);
+  for (const BodyRecord& b : run.bodies) {
+    scene.body_centers_.push_back(b.reference_center);
+    scene.body_solids_.push_back(b.solid);
+  }
   for (std::size_t f = 0; f < fragments.fragments.size(); ++f) {
     Fragment& fragment = fragments.fragments[f];
     if (fragment.body >= 0 && static_cast<std::size_t>(fragment.body) >= scene.body_centers_.size())
@@ -97,16 +103,17 @@ TriangleSoup SolidScene::place(const BodyStates& bodies, std::size_t* missing) c
   for (const Part& f : fragments_)
     if (f.body >= 0) fragmented.insert(f.body);
 
-  for (const Part& s : solids_)
-    if (s.is_static) append(soup, s.mesh, identity, colors_.static_color);
+  for (std::size_t k = 0; k < solids_.size(); ++k)
+    if (solids_[k].is_static)
+      append(soup, solids_[k].mesh, identity, colors_.static_color, static_cast<std::int32_t>(k));
   for (const Part& f : fragments_)
-    if (f.body < 0) append(soup, f.mesh, identity, shade_of(colors_.body_color, -1));
+    if (f.body < 0) append(soup, f.mesh, identity, shade_of(colors_.body_color, -1), -1);
 
   std::size_t without_mesh = 0;
   if (bodies.size() == 0) {
     // No poses in this frame: bodies stand where they started (time 0).
     for (const Part& s : solids_)
-      if (!s.is_static) append(soup, s.mesh, identity, shade_of(colors_.body_color, s.body));
+      if (!s.is_static) append(soup, s.mesh, identity, shade_of(colors_.body_color, s.body), body_solids_[s.body]);
   } else {
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       const std::int32_t b = bodies.id[i];
@@ -121,11 +128,11 @@ TriangleSoup SolidScene::place(const BodyStates& bodies, std::size_t* missing) c
       bool drawn = false;
       if (fragmented.count(b)) {
         for (const Part& f : fragments_)
-          if (f.body == b) append(soup, f.mesh, pose, color);
+          if (f.body == b) append(soup, f.mesh, pose, color, body_solids_[b]);
         drawn = true;
       } else {
         for (const Part& s : solids_)
-          if (s.body == b) append(soup, s.mesh, pose, color), drawn = true;
+          if (s.body == b) append(soup, s.mesh, pose, color, body_solids_[b]), drawn = true;
       }
       if (!drawn) ++without_mesh;
     }

@@ -28,6 +28,9 @@ namespace bw::render {
 // each, in that order, 9 floats per vertex).
 struct TriangleSoup {
   std::vector<float> vertices;
+  // Per vertex, the run file's row of the solid it belongs to (a fragment: its body's
+  // root solid), -1 for none: which boundary particles colour it (wall_paint.h).
+  std::vector<std::int32_t> solid;
   std::size_t triangle_count() const { return vertices.size() / 27; }
   Aabb bounds() const;
 };
@@ -75,6 +78,7 @@ class SolidScene {
   std::vector<Part> solids_;      // one per /solids record
   std::vector<Part> fragments_;   // one per fragment
   std::vector<Vec3d> body_centers_;  // c_ref per body of the run
+  std::vector<std::int32_t> body_solids_;  // root solid per body of the run
   SolidColors colors_;
 };
 

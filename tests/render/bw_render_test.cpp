@@ -298,6 +298,64 @@ TEST(BwRender, FittedCameraSeesTheWaterInATank) {
       << hidden.err;
 }
 
+// OUT/run.h5 (a wall), OUT/frames/00000N.h5: the ball falling, and the wall's face
+// loaded by a pressure that grows with the frame (frame 0: none, as bw-sim writes it).
+void write_loaded_run(const bw::test::TempDir& dir, std::initializer_list<int> frames) {
+  br::test::write_wall_run(dir.path());
+  std::filesystem::create_directories(dir.file("frames"));
+  for (int n : frames) {
+    bw::FrameData f;
+    f.frame = n;
+    f.time = n / 30.0;
+    br::test::add_ball(f, Vec3d(0, 0, 0.8 - 0.05 * n), 0.2, 0.04, 0.1, 7);
+    br::test::add_wall_pressure(f, dir.path(), [n](const Vec3d& x) { return x.y() < 0.55 ? 1000.0 * n * (1 + x.z()) : 0.0; });
+    bw::write_frame(f, bw::frame_file_name(dir.file("frames"), n));
+  }
+}
+
+// The solids coloured by the wall pressure: one scale for the folder, so a frame
+// rendered alone is the frame rendered with the others, byte for byte; the scale
+// the summary names is the loaded patches' 1st to 99th percentile (0 to about
+// 2 x 2000 Pa); given a range, the image changes; without the water, too.
+TEST(BwRender, SolidsColouredByTheWallPressureKeepOneScaleForTheFolder) {
+  bw::test::TempDir dir;
+  write_loaded_run(dir, {0, 1, 2});
+  const std::string base = kTool + " " + dir.file("frames") + kSmall + " --solids wall_pressure";
+  const auto all = run(base + " -o " + dir.file("all"));
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  EXPECT_NE(all.err.find("coloured by the wall pressure, 0 to 3"), std::string::npos) << all.err;
+  EXPECT_NE(all.err.find("the 1st to 99th percentile of the loaded patches of the folder's 3 frames"),
+            std::string::npos)
+      << all.err;
+  ASSERT_EQ(run(base + " -o " + dir.file("one") + " --frames 1").exit_code, 0);
+  EXPECT_EQ(slurp(dir.file("all/000001.png")), slurp(dir.file("one/000001.png")));
+  const auto ranged = run(base + " -o " + dir.file("ranged") + " --frames 1 --pressure-range 0:10000");
+  ASSERT_EQ(ranged.exit_code, 0) << ranged.err;
+  EXPECT_NE(ranged.err.find("0 to 1e+04 Pa (render.pressure_range)"), std::string::npos) << ranged.err;
+  EXPECT_NE(slurp(dir.file("ranged/000001.png")), slurp(dir.file("one/000001.png")));
+  ASSERT_EQ(run(base + " -o " + dir.file("dry") + " --frames 1 --no-water").exit_code, 0);
+  EXPECT_NE(slurp(dir.file("dry/000001.png")), slurp(dir.file("one/000001.png")));
+  ASSERT_EQ(run(kTool + " " + dir.file("frames") + kSmall + " -o " + dir.file("plain") + " --frames 1").exit_code, 0);
+  EXPECT_NE(slurp(dir.file("plain/000001.png")), slurp(dir.file("one/000001.png")));
+}
+
+TEST(BwRender, SolidsColouredByAFieldTheFramesLackIsBadInput) {
+  bw::test::TempDir dir;
+  write_run(dir, {0, 1});
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("out") + " --solids wall_pressure"),
+                        2, "000000.h5: holds no wall pressure; add \"wall_pressure\" to the scene's [output] fields");
+  EXPECT_TRUE(nothing_in(dir.file("out")));
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("out") + " --pressure-range 0:10"), 2,
+                        "--pressure-range: only with --solids wall_pressure");
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("out") +
+                            " --solids wall_pressure --pressure-range 5:1"),
+                        2, "--pressure-range '5:1': MAX must be above MIN");
+  expect_one_line_error(run(kTool + " " + dir.file("frames") + " -o " + dir.file("out") +
+                            " --solids wall_pressure --pressure-range 0:x"),
+                        2, "--pressure-range '0:x': expected MIN:MAX, two numbers in Pa");
+  EXPECT_TRUE(nothing_in(dir.file("out")));
+}
+
 TEST(BwRender, Video) {
   if (br::find_on_path("ffmpeg").empty()) GTEST_SKIP() << "ffmpeg is not installed";
   bw::test::TempDir dir;

@@ -18,6 +18,7 @@
 #include "render/renderer.h"
 #include "render/solids.h"
 #include "render/view_fit.h"
+#include "render/wall_paint.h"
 #include "synthetic.h"
 #include "test_support.h"
 
@@ -218,6 +219,75 @@ TEST(Renderer, SolidsShowWhereTheirMeshesProject) {
   const Eigen::Vector2d at_old = project(camera, Vec3d(0, -1.2, 0.2));
   EXPECT_FALSE(same_pixel(image_moved, empty, int(at_new.x()), int(at_new.y())));
   EXPECT_TRUE(same_pixel(image_moved, empty, int(at_old.x()), int(at_old.y())));
+}
+
+// The wall coloured by the pressure on its face: every pixel of the front face shows
+// the colour of the field wall_paint.h defines at the point it sees (the table on the
+// host, PaintTable::value), on the scale, shaded by the face's turn from the camera,
+// to 3 levels of 255 (float positions, the map's 256 entries); the pixels above the
+// wall, which see only sky, are those of the unpainted render.
+TEST(Renderer, SolidsColouredByTheWallPressureShowTheFieldAtEveryPixel) {
+  bw::test::TempDir dir;
+  br::test::write_wall_run(dir.path());
+  const br::TriangleSoup soup = br::SolidScene::load({dir.file("run.h5"), ""}, {}).place({});
+  bw::FrameData frame;
+  br::test::add_wall_pressure(frame, dir.path(), [](const Vec3d& x) { return 10000.0 * x.z() + 2000.0 * x.x(); });
+  const br::PaintTable table = br::paint_table(frame, 0.05, "frame");
+  br::RenderSettings s = small_settings();
+  s.light.shadows = false;
+  s.ground = false;
+  br::Renderer shaded(context(), s);
+  s.solids = br::SolidColoring::kWallPressure;
+  br::Renderer painted(context(), s);
+  br::Camera camera;
+  camera.position = Vec3d(0.3, -2.2, 0.6);
+  camera.target = Vec3d(0, 0.5, 0.45);
+  br::RenderInput in = input_of(bw::FrameData{}, camera, 0.05);
+  in.solids = &soup;
+  const br::Image plain = shaded.render(in);
+  in.paint = &table;
+  // Values in [-2000, 12000] Pa: the map's colours stay below the tone curve's knee.
+  in.paint_scale = {-3000, 14000};
+  const br::Image image = painted.render(in);
+
+  // The ray through a pixel's centre, to the face y = 0.5.
+  const Vec3d forward = (camera.target - camera.position).normalized();
+  const Vec3d right = forward.cross(camera.up).normalized(), up = right.cross(forward);
+  const double half = std::tan(camera.fov_degrees * M_PI / 360.0);
+  const auto encode = [](double c) {
+    c = std::clamp(c, 0.0, 1.0);
+    return 255 * (c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1 / 2.4) - 0.055);
+  };
+  int face = 0, sky = 0, sky_changed = 0;
+  double worst = 0, low = 1e9, high = -1e9;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const Vec3d ray = (forward + right * ((x + 0.5) / kWidth * 2 - 1) * half * kWidth / kHeight +
+                         up * (1 - (y + 0.5) / kHeight * 2) * half)
+                            .normalized();
+      const double t = (0.5 - camera.position.y()) / ray.y();
+      const Vec3d hit = camera.position + t * ray;
+      if (hit.z() > 1.1 && std::abs(hit.x()) < 0.9 && ray.z() > 0) {
+        ++sky, sky_changed += !same_pixel(image, plain, x, y);
+        continue;
+      }
+      if (std::abs(hit.x()) > 0.9 || hit.z() < 0.1 || hit.z() > 0.9) continue;
+      const double value = table.value(hit, 0);
+      low = std::min(low, value), high = std::max(high, value);
+      const double shade = 0.55 + 0.45 * (camera.position - hit).normalized().dot(Vec3d(0, -1, 0));
+      const Vec3d expected = in.paint_scale.linear(value) * shade;
+      for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(image.pixel(x, y)[k] - encode(expected[k])));
+      ++face;
+    }
+  bw::test::figure("face pixels", face);
+  bw::test::figure("pressure seen (Pa), from", low);
+  bw::test::figure("to", high);
+  bw::test::figure("largest difference from the host's colour (levels of 255)", worst);
+  ASSERT_GT(face, 3000);
+  EXPECT_GT(high - low, 8000);  // the face shows the field's range, not one colour
+  EXPECT_LE(worst, 3.0);
+  ASSERT_GT(sky, 100);
+  EXPECT_EQ(sky_changed, 0);
 }
 
 // Water behind a solid is hidden exactly where the solid stands in front of it: the

@@ -122,6 +122,28 @@ TEST(RenderSettings, RejectsBadValues) {
             std::string::npos);
 }
 
+TEST(RenderSettings, SolidsColouredByTheWallPressure) {
+  const auto s = br::parse_render_settings(
+      "[render]\nsolids = \"wall_pressure\"\npressure_range = [-500, 2e4]\nlegend = false\nwater = false\n", "s.toml");
+  EXPECT_EQ(s.solids, br::SolidColoring::kWallPressure);
+  ASSERT_TRUE(s.pressure_range);
+  EXPECT_EQ(s.pressure_range->min, -500);
+  EXPECT_EQ(s.pressure_range->max, 2e4);
+  EXPECT_FALSE(s.legend);
+  EXPECT_FALSE(s.water);
+  const auto d = br::parse_render_settings("", "s.toml");
+  EXPECT_EQ(d.solids, br::SolidColoring::kShaded);
+  EXPECT_FALSE(d.pressure_range);
+  EXPECT_TRUE(d.legend);
+  EXPECT_TRUE(d.water);
+  EXPECT_EQ(error_of([] { br::parse_render_settings("[render]\nsolids = \"pressure\"\n", "s.toml"); }),
+            "s.toml: render.solids: 'pressure' is not one of shaded, wall_pressure");
+  EXPECT_EQ(error_of([] { br::parse_render_settings("[render]\npressure_range = [0]\n", "s.toml"); }),
+            "s.toml: render.pressure_range: expected an array of 2 numbers [min, max] (Pa)");
+  EXPECT_EQ(error_of([] { br::parse_render_settings("[render]\npressure_range = [10, 10]\n", "s.toml"); }),
+            "s.toml: render.pressure_range: [10, 10]: the second value must be above the first");
+}
+
 TEST(RenderSettings, FrameRanges) {
   auto r = br::parse_frame_range("3:9:2");
   EXPECT_EQ(*r.first, 3);

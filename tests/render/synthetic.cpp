@@ -68,6 +68,7 @@ Aabb write_wall_run(const std::string& dir, const Vec3d& translation, bool tank)
     solid.translation = shift;
     run.solids.push_back(solid);
   };
+  run.parameters.emplace_back("spacing", 0.05);
   add_solid("wall", mesh::box(lo, hi), translation);
   if (tank) add_solid("tank", mesh::open_box(Vec3d(-1.0, -0.75, 0.0), Vec3d(1.0, 0.45, 0.4), 0.05), Vec3d::Zero());
   write_run(run, dir + "/run.h5");
@@ -75,6 +76,18 @@ Aabb write_wall_run(const std::string& dir, const Vec3d& translation, bool tank)
   box.add(lo + translation);
   box.add(hi + translation);
   return box;
+}
+
+void add_wall_pressure(FrameData& frame, const std::string& dir, const std::function<double(const Vec3d&)>& pressure,
+                       const Vec3d& translation) {
+  for (const Vec3d& local : read_particles(dir + "/wall.h5").surface_positions()) {
+    const Vec3d x = local + translation;
+    frame.bx.push_back(static_cast<float>(x.x()));
+    frame.by.push_back(static_cast<float>(x.y()));
+    frame.bz.push_back(static_cast<float>(x.z()));
+    frame.bp.push_back(static_cast<float>(pressure(x)));
+    frame.bsolid.push_back(0);
+  }
 }
 
 Aabb write_tank_run(const std::string& dir) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "common/geometry.h"
@@ -24,12 +25,18 @@ void add_block(FrameData& frame, const Vec3d& min, const Vec3d& max, double spac
 // the benchmark). Spacing follows from the count.
 FrameData splash_frame(std::size_t particles, int frame_number = 0);
 
-// Writes a run file `dir`/run.h5 with one static solid: a wall (box mesh sampled at
-// 0.05 m into `dir`/wall.h5) spanning x in [-1, 1], y in [0.5, 0.65], z in [0, 1]
+// Writes a run file `dir`/run.h5 (its /parameters/spacing 0.05) with one static
+// solid: a wall (box mesh sampled at 0.05 m into `dir`/wall.h5) spanning x in [-1, 1], y in [0.5, 0.65], z in [0, 1]
 // after the given translation. With `tank`, a second static solid: an open tank
 // around the splash's pool (inside x in [-1, 1], y in [-0.75, 0.45], z from 0, rim
 // at 0.4 m, walls 5 cm), in `dir`/tank.h5. Returns the wall's bounds in the world.
 Aabb write_wall_run(const std::string& dir, const Vec3d& translation = Vec3d::Zero(), bool tank = false);
+
+// The wall pressure of write_wall_run's wall in `frame` (the wall_pressure field and
+// boundary/solid, as bw-sim writes them): each of the wall's particles (at their
+// sampled positions, plus the run's translation) with the pressure `pressure` gives it.
+void add_wall_pressure(FrameData& frame, const std::string& dir, const std::function<double(const Vec3d&)>& pressure,
+                       const Vec3d& translation = Vec3d::Zero());
 
 // The dam break of examples/dambreak.toml: the example tank (examples/meshes/
 // tank.obj: an open box whose cavity spans x in [0, 0.6], y in [0, 0.15], z in

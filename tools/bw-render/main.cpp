@@ -1,13 +1,31 @@
 // bw-render: screen-space fluid rendering of a simulation's frames into PNG images.
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <optional>
 
 #include "cli/tool.h"
+#include "common/error.h"
 #include "common/terminal.h"
 #include "common/text.h"
 #include "render/sequence.h"
 
 namespace {
+
+// "MIN:MAX", two numbers.
+bw::render::ValueRange parse_range(const std::string& text) {
+  const std::vector<std::string> parts = bw::split(text, ':');
+  double v[2] = {0, 0};
+  bool ok = parts.size() == 2;
+  for (std::size_t k = 0; ok && k < 2; ++k) {
+    char* end = nullptr;
+    v[k] = std::strtod(parts[k].c_str(), &end);
+    ok = !parts[k].empty() && *end == '\0' && std::isfinite(v[k]);
+  }
+  if (!ok) bw::fail_input("--pressure-range '{}': expected MIN:MAX, two numbers in Pa", text);
+  if (!(v[1] > v[0])) bw::fail_input("--pressure-range '{}': MAX must be above MIN", text);
+  return {v[0], v[1]};
+}
 
 struct Options {
   std::string frames_dir;
@@ -22,6 +40,9 @@ struct Options {
   std::string filter;
   std::string spray;  // "on", "off" or empty: the scene's render.spray
   std::string view = "shaded";
+  std::string solids;          // "shaded", "wall_pressure" or empty: the scene's render.solids
+  std::string pressure_range;  // MIN:MAX in Pa
+  bool no_water = false;
   std::string video;
   double fps = 0;
   double radius = 0;
@@ -62,6 +83,13 @@ struct Options {
     j.settings.view = *bw::render::parse_view(view);
     if (radius > 0) j.settings.particle_radius = radius;
     if (!spray.empty()) j.settings.spray = spray == "on";
+    if (!solids.empty()) j.settings.solids = *bw::render::parse_solid_coloring(solids);
+    if (!pressure_range.empty()) {
+      if (j.settings.solids != bw::render::SolidColoring::kWallPressure)
+        bw::fail_input("--pressure-range: only with --solids wall_pressure (or the scene's render.solids)");
+      j.settings.pressure_range = parse_range(pressure_range);
+    }
+    if (no_water) j.settings.water = false;
     j.settings.validate("command line");
     return j;
   }
@@ -82,6 +110,13 @@ void print_summary(const Options& o, const bw::render::SequenceJob& job, const s
                  "  note         the camera%s sees none of the water of the reference frame: solids hide it or it is "
                  "out of view\n",
                  r.camera_keys > 1 ? " at the reference frame's time" : "");
+  if (r.paint) {
+    const auto& p = *r.paint;
+    std::fprintf(stderr, "  solids       coloured by the wall pressure, %.4g to %.4g Pa (%s)\n", p.scale.min,
+                 p.scale.max, r.paint_source.c_str());
+    if (p.samples)
+      std::fprintf(stderr, "               the highest patch %.4g Pa, %zu loaded patches pooled\n", p.peak, p.samples);
+  }
   if (!o.verbose) return;
   const auto& s = job.settings;
   const auto& c = f.camera;
@@ -125,7 +160,8 @@ int main(int argc, char** argv) {
                  "  bw-render out/wall/frames -o out/wall/images\n"
                  "  bw-render out/wall/frames -o images --scene examples/wall.toml --frames 0:239:2\n"
                  "  bw-render frames -o images --fragments fragments.h5 --video wall.mp4\n"
-                 "  bw-render frames -o images --frames 0:99 --width 640 --height 360 --camera 2,-3,1.5:0,0,0.4:40\n");
+                 "  bw-render frames -o images --frames 0:99 --width 640 --height 360 --camera 2,-3,1.5:0,0,0.4:40\n"
+                 "  bw-render frames -o loads --solids wall_pressure --pressure-range 0:20000 --no-water\n");
   Options o;
   app.add_option("frames_dir", o.frames_dir, "Folder of frame files (OUTDIR/frames of a simulation)")->required();
   app.add_option("-o,--output", o.output_dir, "Folder for the images (created when missing)")->required();
@@ -142,6 +178,14 @@ int main(int argc, char** argv) {
   app.add_option("--filter", o.filter, "Depth smoothing")->check(CLI::IsMember({"narrow-range", "bilateral", "none"}));
   app.add_option("--view", o.view, "What to draw: the picture or a layer of the fluid")
       ->check(CLI::IsMember({"shaded", "depth", "thickness", "normals"}));
+  app.add_option("--solids", o.solids,
+                 "Colour of the solids: their own, or the pressure on their faces (frames with the wall_pressure "
+                 "field), with a colour bar")
+      ->check(CLI::IsMember({"shaded", "wall_pressure"}));
+  app.add_option("--pressure-range", o.pressure_range,
+                 "Pressures at the colour scale's ends, MIN:MAX in Pa (default: the 1st to 99th percentile of the "
+                 "loaded patches over the folder's frames)");
+  app.add_flag("--no-water", o.no_water, "Leave the water out: nothing hides the solids");
   app.add_option("--radius", o.radius, "Particle sphere radius in m (default: estimated)")->check(bw::cli::kPositive);
   app.add_option("--spray", o.spray, "Draw isolated particles as spray and tint thin water as foam (default on)")
       ->check(CLI::IsMember({"on", "off"}));
