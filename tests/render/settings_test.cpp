@@ -530,6 +530,7 @@ TEST(Solids, FragmentsReplaceTheirBodysMeshAndUnknownBodiesAreCounted) {
   root.reference_center = Vec3d(0, 0.575, 0.5);
   child.parent = 0;
   child.reference_center = Vec3d(0.5, 0.575, 0.5);
+  root.solid = child.solid = 0;  // the wall, whose boundary particles colour them
   run.bodies = {root, child};
   bw::write_run(run, dir.file("run.h5"));
   bw::FragmentSet set;
@@ -550,8 +551,12 @@ TEST(Solids, FragmentsReplaceTheirBodysMeshAndUnknownBodiesAreCounted) {
   states.orientation = {Eigen::Quaterniond::Identity(), Eigen::Quaterniond::Identity()};
   states.linear_velocity = states.angular_velocity = {Vec3d::Zero(), Vec3d::Zero()};
   std::size_t missing = 0;
-  const bw::Aabb box = scene.place(states, &missing).bounds();
+  const br::TriangleSoup soup = scene.place(states, &missing);
+  const bw::Aabb box = soup.bounds();
   EXPECT_EQ(missing, 1u);  // body 7 is not in the run
+  // Every vertex of the fragments belongs to the wall's row of the run.
+  ASSERT_EQ(soup.solid.size(), soup.vertices.size() / 9);
+  EXPECT_EQ(std::count(soup.solid.begin(), soup.solid.end(), 0), static_cast<std::ptrdiff_t>(soup.solid.size()));
   // Only body 1's fragments, lifted by 3 m; the wall's own body is not in the frame.
   EXPECT_TRUE(box.min.isApprox(Vec3d(0, 0.5, 3), 1e-6)) << box.min.transpose();
   EXPECT_TRUE(box.max.isApprox(Vec3d(1, 0.65, 4), 1e-6)) << box.max.transpose();
