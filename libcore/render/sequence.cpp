@@ -173,7 +173,7 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
       report.paint_source = "render.pressure_range";
     } else {
       report.paint = wall_pressure_range(plan.folder_frames);
-      report.paint_source = fmt::format("the 1st to 99th percentile of the loaded patches of the folder's {} frames",
+      report.paint_source = fmt::format("up to the 99th percentile of the loaded patches of the folder's {} frames",
                                         report.paint->frames);
     }
   }

@@ -39,6 +39,9 @@ Vec3d viridis(double t) {
   return v.cwiseMax(0.0).cwiseMin(1.0);
 }
 
+// The scale starts below 0 when the 1st percentile is below -this x the 99th.
+constexpr double kSuction = 0.05;
+
 double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 
 double percentile(std::vector<float>& v, double q) {
@@ -174,8 +177,11 @@ PaintRange wall_pressure_range(const std::vector<std::string>& frame_paths) {
   r.samples = loaded.size();
   if (loaded.empty()) return r;  // nothing loaded anywhere: [0, 1] Pa, every face at the bottom colour
   r.peak = *std::max_element(loaded.begin(), loaded.end());
-  const double low = std::min(0.0, percentile(loaded, 0.01));
   const double high = percentile(loaded, 0.99);
+  // Suction shows only where it is more than a trace of the loads (a few patches'
+  // fractions of a pascal would otherwise start the scale just below 0).
+  const double first = percentile(loaded, 0.01);
+  const double low = first < -kSuction * std::max(high, 0.0) ? first : 0.0;
   r.scale.min = low;
   r.scale.max = high > low ? high : low + 1;
   return r;

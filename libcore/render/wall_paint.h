@@ -54,8 +54,9 @@ struct ColorScale {
 // shader interpolates.
 std::vector<float> paint_colors_linear(int samples);
 
-// The range that colours a sequence when none is given: from the lower of 0 and the
-// 1st percentile to the 99th percentile of the loaded patches' pressures (non-zero),
+// The range that colours a sequence when none is given: from 0 (or the 1st
+// percentile, where that is a suction of more than 5% of the top) to the 99th
+// percentile of the loaded patches' pressures (non-zero),
 // pooled over the given frames, so that a few single patches' spikes do not darken
 // everything else, and every part of a sequence rendered in pieces has the same scale.
 struct PaintRange {

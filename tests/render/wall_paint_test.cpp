@@ -148,6 +148,21 @@ TEST(WallPaint, TheRangeIsThePercentilesOfTheLoadedPatchesOfEveryFrame) {
   // The 99th percentile of 1..1000 and the spike: the spike does not set the scale.
   EXPECT_GE(r.scale.max, 985.0);
   EXPECT_LE(r.scale.max, 1000.0);
+
+  // Suction: a trace of it (a tenth of the patches at -1 Pa) leaves the scale at 0; a
+  // fifth at -200 Pa starts it at their 1st percentile.
+  for (float suction : {-1.0f, -200.0f}) {
+    bw::FrameData f;
+    f.frame = 0;
+    for (int k = 0; k < 1000; ++k) {
+      const float p = k % (suction < -100 ? 5 : 10) == 0 ? suction : static_cast<float>(k + 1);
+      f.bx.push_back(0), f.by.push_back(0), f.bz.push_back(0), f.bp.push_back(p), f.bsolid.push_back(0);
+    }
+    const std::string path = bw::frame_file_name(dir.path(), 7);
+    bw::write_frame(f, path);
+    const br::PaintRange s = br::wall_pressure_range({path});
+    EXPECT_EQ(s.scale.min, suction < -100 ? -200.0 : 0.0) << suction;
+  }
 }
 
 TEST(Legend, TicksAreRoundNumbersWithinTheRange) {

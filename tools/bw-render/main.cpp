@@ -183,7 +183,7 @@ int main(int argc, char** argv) {
                  "field), with a colour bar")
       ->check(CLI::IsMember({"shaded", "wall_pressure"}));
   app.add_option("--pressure-range", o.pressure_range,
-                 "Pressures at the colour scale's ends, MIN:MAX in Pa (default: the 1st to 99th percentile of the "
+                 "Pressures at the colour scale's ends, MIN:MAX in Pa (default: 0 to the 99th percentile of the "
                  "loaded patches over the folder's frames)");
   app.add_flag("--no-water", o.no_water, "Leave the water out: nothing hides the solids");
   app.add_option("--radius", o.radius, "Particle sphere radius in m (default: estimated)")->check(bw::cli::kPositive);
