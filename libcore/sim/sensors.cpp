@@ -34,6 +34,16 @@ SensorWeights sensor_weights(const BoundarySet& b, const scene::Sensor& sensor, 
   auto on_face = [&](std::size_t k) {
     return b.flatness[k] >= kFaceFlatness && (sensor.solid < 0 || b.solid[k] == static_cast<std::uint32_t>(sensor.solid));
   };
+  // Why a sensor finds no face where particles are: a part thinner than a cell has
+  // none (its faces' normals cancel; setup.cpp's surface_normals).
+  auto thin_hint = [&]() -> std::string {
+    for (std::size_t k = 0; k < n; ++k)
+      if ((sensor.solid < 0 || b.solid[k] == static_cast<std::uint32_t>(sensor.solid)) &&
+          normal_of(k).squaredNorm() == 0 && (position(k) - sensor.at).squaredNorm() < h2)
+        return "; the particles there are of a part thinner than a cell, which has no face to read: sample it with "
+               "a finer spacing";
+    return "";
+  };
   SensorWeights out;
   out.name = sensor.name;
   out.at = sensor.at;
@@ -45,9 +55,9 @@ SensorWeights sensor_weights(const BoundarySet& b, const scene::Sensor& sensor, 
       if (on_face(k) && (position(k) - sensor.at).squaredNorm() < h2) sum += normal_of(k);
     if (!(sum.norm() > 0))
       fail_input("{}: no face of {} within h = {:.4g} m of at = ({:.4g}, {:.4g}, {:.4g}) (a sensor sits on a face "
-                 "of a static solid)",
+                 "of a static solid){}",
                  where, sensor.solid < 0 ? std::string("any static solid") : fmt::format("solid {}", sensor.solid), h,
-                 sensor.at.x(), sensor.at.y(), sensor.at.z());
+                 sensor.at.x(), sensor.at.y(), sensor.at.z(), thin_hint());
     out.normal = sum.normalized();
   }
   const Vec3d nrm = out.normal;
@@ -77,8 +87,8 @@ SensorWeights sensor_weights(const BoundarySet& b, const scene::Sensor& sensor, 
     }
     if (!(total > 0))
       fail_input("{}: the point ({:.4g}, {:.4g}, {:.4g}) of its disc has no particle of a face facing ({:.3g}, "
-                 "{:.3g}, {:.3g}) within h = {:.4g} m (a sensor sits on a face of a static solid, inside its edges)",
-                 where, q.x(), q.y(), q.z(), nrm.x(), nrm.y(), nrm.z(), h);
+                 "{:.3g}, {:.3g}) within h = {:.4g} m (a sensor sits on a face of a static solid, inside its edges){}",
+                 where, q.x(), q.y(), q.z(), nrm.x(), nrm.y(), nrm.z(), h, thin_hint());
     for (std::size_t j = 0; j < face.size(); ++j) weight[j] += w[j] / total / static_cast<double>(points.size());
   }
   for (std::size_t j = 0; j < face.size(); ++j) {

@@ -293,6 +293,12 @@ particles = "thin.h5"
 [output]
 fields = ["wall_pressure"]
 )";
+  // A sensor on that floor has no face to read, and says why.
+  const auto refused = test::run(test::tool("bw-sim") + " " + dir.file("thin.toml") + " -o " + dir.file("refused") +
+                                 " --set 'sensor=[{name = \"floor\", at = [0.05, 0.05, 0]}]'");
+  EXPECT_EQ(refused.exit_code, 2) << refused.err;
+  EXPECT_NE(refused.err.find("the particles there are of a part thinner than a cell"), std::string::npos)
+      << refused.err;
   test::run_scene(dir.file("thin.toml"), dir.file("out"));
   const double s = 0.01;
   double floor_sum = 0, sz = 0, sp = 0, szz = 0, szp = 0;
