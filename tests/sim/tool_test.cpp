@@ -354,6 +354,9 @@ TEST(BwSim, BadInputsExitWithTwoAndWriteNothing) {
                    "scene.toml: camera.key[1].time: 0.1 is not after camera.key[0].time = 0.2");
   expect_bad_input(kGood + "[camera]\ntrack = \"crate\"\nposition = [0, -1, 1]\n",
                    "scene.toml: camera.track: 'crate' is not a body of the scene (it has none:");
+  expect_bad_input(kGood + "[render]\nsolids = \"wall_pressure\"\n",
+                   "scene.toml: render.solids: \"wall_pressure\" colours the solids by a field the frames would not "
+                   "hold; add \"wall_pressure\" to [output] fields");
   expect_bad_input(kGood, "scene.toml: light.intensity: must be >= 0", "--set light.intensity=-1");
   expect_bad_input(kGood, "--device: 'fastest'", "--device fastest");
   expect_bad_input(kGood, "--device 99", "--device 99");

@@ -132,6 +132,10 @@ int main(int argc, char** argv) {
                        bodies.empty() ? "it has none: dynamic, breakable and moving solids are bodies"
                                       : "its bodies: " + bodies + ", and the fragments of breakable ones, 'NAME.N'");
       }
+      if (look.solids == bw::render::SolidColoring::kWallPressure && !scene.fields.wall_pressure)
+        bw::fail_input("{}: render.solids: \"wall_pressure\" colours the solids by a field the frames would not "
+                       "hold; add \"wall_pressure\" to [output] fields",
+                       scene.path);
       device = bw::compute::choose_device(o.device.empty() ? "auto" : o.device);
     }
     bw::sim::Simulation simulation(scene, device, options);
