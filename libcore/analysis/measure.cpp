@@ -103,12 +103,7 @@ double surface_elevation(const FrameData& frame, double x, double y, double radi
 }
 
 WallLoad wall_load(const FrameData& frame, int solid, const std::string& where) {
-  if (frame.bp.empty())
-    fail_input("{}: holds no wall pressure; add \"wall_pressure\" to the scene's [output] fields", where);
-  if (frame.bsolid.size() != frame.bp.size())
-    fail_input("{}: holds no boundary/solid, which tells each boundary particle's solid (bw-sim writes it from this "
-               "version on): run the scene again",
-               where);
+  require_wall_pressure(frame.fields(), where);
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   WallLoad w;
   w.peak = w.mean = kNaN;

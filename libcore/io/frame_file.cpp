@@ -75,6 +75,15 @@ FrameFields FrameData::fields() const {
   return f;
 }
 
+void require_wall_pressure(const FrameFields& fields, const std::string& where) {
+  if (!fields.wall_pressure)
+    fail_input("{}: holds no wall pressure; add \"wall_pressure\" to the scene's [output] fields", where);
+  if (!fields.boundary_solid)
+    fail_input("{}: holds no boundary/solid, which tells each boundary particle's solid (bw-sim writes it from this "
+               "version on): run the scene again",
+               where);
+}
+
 std::string frame_file_name(const std::string& folder, int frame) {
   return fmt::format("{}/{:06d}.h5", folder, frame);
 }

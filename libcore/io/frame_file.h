@@ -76,6 +76,10 @@ struct FrameHeader {
   BodyStates bodies;            // read only when asked for
 };
 
+// Throws InputError naming `where` unless the fields hold the wall pressure and each
+// boundary particle's solid (what a look at the loads on the solids needs).
+void require_wall_pressure(const FrameFields& fields, const std::string& where);
+
 // Reads the attributes and dataset shapes of a frame file, and its body states when
 // `with_bodies`. Throws InputError naming the file as read_frame does.
 FrameHeader read_frame_header(const std::string& path, bool with_bodies = false);

@@ -117,15 +117,7 @@ SequencePlan plan_sequence(const SequenceJob& job) {
       fail_input("{}: colouring the solids by the wall pressure needs the run file (its solids and spacing); none "
                  "beside the frames: give --run",
                  job.frames_dir);
-    for (const FramePlan& f : plan.frames) {
-      const FrameHeader h = read_frame_header(f.path);
-      if (!h.fields.wall_pressure)
-        fail_input("{}: holds no wall pressure; add \"wall_pressure\" to the scene's [output] fields", f.path);
-      if (!h.fields.boundary_solid)
-        fail_input("{}: holds no boundary/solid, which tells each boundary particle's solid (bw-sim writes it from "
-                   "this version on): run the scene again",
-                   f.path);
-    }
+    for (const FramePlan& f : plan.frames) require_wall_pressure(read_frame_header(f.path).fields, f.path);
   }
 
   if (job.output_dir.empty()) fail_input("no output folder given (-o)");

@@ -59,12 +59,7 @@ std::uint32_t paint_bucket(std::int32_t cx, std::int32_t cy, std::int32_t cz, st
 }
 
 PaintTable paint_table(const FrameData& frame, double spacing, const std::string& where) {
-  if (frame.bp.empty())
-    fail_input("{}: holds no wall pressure; add \"wall_pressure\" to the scene's [output] fields", where);
-  if (frame.bsolid.size() != frame.bp.size())
-    fail_input("{}: holds no boundary/solid, which tells each boundary particle's solid (bw-sim writes it from this "
-               "version on): run the scene again",
-               where);
+  require_wall_pressure(frame.fields(), where);
   if (!(spacing > 0)) fail_input("{}: particle spacing {} is not positive", where, spacing);
   PaintTable t;
   t.reach = static_cast<float>(spacing);
@@ -168,8 +163,7 @@ PaintRange wall_pressure_range(const std::vector<std::string>& frame_paths) {
   std::vector<float> loaded;
   for (const std::string& path : frame_paths) {
     const FrameData frame = read_frame_boundary(path);
-    if (frame.bp.empty())
-      fail_input("{}: holds no wall pressure; add \"wall_pressure\" to the scene's [output] fields", path);
+    require_wall_pressure(frame.fields(), path);
     for (float p : frame.bp)
       if (p != 0.0f && std::isfinite(p)) loaded.push_back(p);
     ++r.frames;

@@ -34,8 +34,10 @@ std::string slurp(const std::string& path) {
   return ss.str();
 }
 
-// OUT/run.h5 (a wall), OUT/frames/00000N.h5 for N in `frames`: a ball falling.
-void write_run(const bw::test::TempDir& dir, std::initializer_list<int> frames) {
+// OUT/run.h5 (a wall), OUT/frames/00000N.h5 for N in `frames`: a ball falling; with
+// `loaded`, the wall's face loaded by a pressure that grows with the frame (frame 0:
+// none, as bw-sim writes it).
+void write_run(const bw::test::TempDir& dir, std::initializer_list<int> frames, bool loaded = false) {
   br::test::write_wall_run(dir.path());
   std::filesystem::create_directories(dir.file("frames"));
   for (int n : frames) {
@@ -43,6 +45,9 @@ void write_run(const bw::test::TempDir& dir, std::initializer_list<int> frames) 
     f.frame = n;
     f.time = n / 30.0;
     br::test::add_ball(f, Vec3d(0, 0, 0.8 - 0.05 * n), 0.2, 0.04, 0.1, 7);
+    if (loaded)
+      br::test::add_wall_pressure(f, dir.path(),
+                                  [n](const Vec3d& x) { return x.y() < 0.55 ? 1000.0 * n * (1 + x.z()) : 0.0; });
     bw::write_frame(f, bw::frame_file_name(dir.file("frames"), n));
   }
 }
@@ -298,28 +303,13 @@ TEST(BwRender, FittedCameraSeesTheWaterInATank) {
       << hidden.err;
 }
 
-// OUT/run.h5 (a wall), OUT/frames/00000N.h5: the ball falling, and the wall's face
-// loaded by a pressure that grows with the frame (frame 0: none, as bw-sim writes it).
-void write_loaded_run(const bw::test::TempDir& dir, std::initializer_list<int> frames) {
-  br::test::write_wall_run(dir.path());
-  std::filesystem::create_directories(dir.file("frames"));
-  for (int n : frames) {
-    bw::FrameData f;
-    f.frame = n;
-    f.time = n / 30.0;
-    br::test::add_ball(f, Vec3d(0, 0, 0.8 - 0.05 * n), 0.2, 0.04, 0.1, 7);
-    br::test::add_wall_pressure(f, dir.path(), [n](const Vec3d& x) { return x.y() < 0.55 ? 1000.0 * n * (1 + x.z()) : 0.0; });
-    bw::write_frame(f, bw::frame_file_name(dir.file("frames"), n));
-  }
-}
-
 // The solids coloured by the wall pressure: one scale for the folder, so a frame
 // rendered alone is the frame rendered with the others, byte for byte; the scale
 // the summary names is 0 to the loaded patches' 99th percentile (about
 // 2 x 2000 Pa); given a range, the image changes; without the water, too.
 TEST(BwRender, SolidsColouredByTheWallPressureKeepOneScaleForTheFolder) {
   bw::test::TempDir dir;
-  write_loaded_run(dir, {0, 1, 2});
+  write_run(dir, {0, 1, 2}, true);
   const std::string base = kTool + " " + dir.file("frames") + kSmall + " --solids wall_pressure";
   const auto all = run(base + " -o " + dir.file("all"));
   ASSERT_EQ(all.exit_code, 0) << all.err;
