@@ -31,16 +31,17 @@ constexpr double kDepth = 0.2;   // m of water in examples/hydrostatic.toml's co
 constexpr double kRate = 100;    // sensor samples per second
 
 // examples/hydrostatic.toml's column (a cavity of 0.1 x 0.1 m, faces on cell planes,
-// filled 0.2 m deep), 1.5 s at spacing 0.01, with sensors on the floor and on two
-// walls, 0.15 and 0.05 m deep.
-std::string write_column(const test::TempDir& dir) {
-  const std::string mesh = std::string(BW_SOURCE_DIR) + "/examples/meshes/column.obj";
+// filled 0.2 m deep), `end` s at spacing 0.01, frames 20 a second with the wall
+// pressure; with `sensors`, sensors on the floor and on two walls, 0.15 and 0.05 m
+// deep, and the loads. `mesh`: the tank's (default examples/meshes/column.obj).
+std::string write_column(const test::TempDir& dir, double end = 1.5, bool sensors = true, std::string mesh = "") {
+  if (mesh.empty()) mesh = std::string(BW_SOURCE_DIR) + "/examples/meshes/column.obj";
   const auto sampled = test::run(test::tool("bw-sample") + " " + mesh + " -o " + dir.file("column.h5") + " --spacing 0.01");
   EXPECT_EQ(sampled.exit_code, 0) << sampled.err;
   std::ofstream(dir.file("column.toml")) << fmt::format(R"(
 spacing = 0.01
 [time]
-end = 1.5
+end = {}
 frame_rate = 20
 [domain]
 min = [-0.05, -0.05, -0.05]
@@ -53,6 +54,14 @@ max = [0.1, 0.1, 0.2]
 [[solid]]
 name = "column"
 particles = "column.h5"
+[output]
+fields = ["wall_pressure"]
+)",
+                                                        end);
+  if (sensors)
+    std::ofstream(dir.file("column.toml"), std::ios::app) << fmt::format(R"(
+loads = true
+sensor_rate = {}
 [[sensor]]
 name = "floor"
 at = [0.05, 0.05, 0]
@@ -70,13 +79,45 @@ radius = 0.01
 name = "shallow"
 at = [0.1, 0.05, 0.15]
 normal = [-1, 0, 0]
-[output]
-loads = true
-sensor_rate = {}
-fields = ["wall_pressure"]
 )",
-                                                        kRate);
+                                                                         kRate);
   return dir.file("column.toml");
+}
+
+// The column's wall pressure at rest over frames first..last: the mean over the
+// floor's middle 8 x 8 particles, the slope of a least-squares line of p against z
+// over the walls' rows facing x (x = -s/2 and 0.1 + s/2, 0.02 to 0.18 m high), and the
+// largest |p| more than three spacings above the water.
+struct AtRest {
+  double floor = 0, slope = 0, above_max = 0;
+  int floor_n = 0;
+};
+AtRest wall_pressure_at_rest(const std::string& frames, int first, int last) {
+  const double s = 0.01;
+  AtRest r;
+  double floor_sum = 0, sz = 0, sp = 0, szz = 0, szp = 0;
+  int wall_n = 0;
+  for (int f = first; f <= last; ++f) {
+    const FrameData d = read_frame(frame_file_name(frames, f));
+    EXPECT_EQ(d.bp.size(), d.bx.size());
+    for (std::size_t k = 0; k < d.bp.size(); ++k) {
+      const double x = d.bx[k], y = d.by[k], z = d.bz[k], p = d.bp[k];
+      EXPECT_TRUE(std::isfinite(p));
+      if (std::abs(z + s / 2) < 1e-4 && std::abs(x - 0.05) < 0.04 && std::abs(y - 0.05) < 0.04) {
+        floor_sum += p;
+        ++r.floor_n;
+      }
+      const bool wall = std::abs(x + s / 2) < 1e-4 || std::abs(x - 0.1 - s / 2) < 1e-4;
+      if (wall && y > 0.02 && y < 0.08 && z > 0.02 && z < 0.18) {
+        sz += z, sp += p, szz += z * z, szp += z * p;
+        ++wall_n;
+      }
+      if (z > kDepth + 3 * s) r.above_max = std::max(r.above_max, std::abs(p));
+    }
+  }
+  r.floor = floor_sum / r.floor_n;
+  r.slope = (wall_n * szp - sz * sp) / (wall_n * szz - sz * sz);
+  return r;
 }
 
 // At rest the floor's patches carry the water above them and the walls the
@@ -176,34 +217,10 @@ TEST(Sensors, TheWallPressureFieldReadsTheWaterAtRest) {
   ASSERT_EQ(first.bp.size(), first.bx.size());
   for (float p : first.bp) ASSERT_EQ(p, 0.0f) << "frame 0 comes before any step";
 
-  const double s = 0.01;
-  double floor_sum = 0, above_max = 0;
-  int floor_n = 0;
-  // Least squares of p against z over the walls' rows (x = -s/2 and 0.1 + s/2).
-  double sz = 0, sp = 0, szz = 0, szp = 0;
-  int wall_n = 0;
-  for (int f = 21; f <= 30; ++f) {
-    const FrameData d = read_frame(frame_file_name(dir.file("out/frames"), f));
-    ASSERT_EQ(d.bp.size(), d.bx.size());
-    for (std::size_t k = 0; k < d.bx.size(); ++k) {
-      const double x = d.bx[k], y = d.by[k], z = d.bz[k], p = d.bp[k];
-      ASSERT_TRUE(std::isfinite(p));
-      if (std::abs(z + s / 2) < 1e-4 && std::abs(x - 0.05) < 0.04 && std::abs(y - 0.05) < 0.04) {
-        floor_sum += p;
-        ++floor_n;
-      }
-      const bool wall = std::abs(x + s / 2) < 1e-4 || std::abs(x - 0.1 - s / 2) < 1e-4;
-      if (wall && y > 0.02 && y < 0.08 && z > 0.02 && z < 0.18) {
-        sz += z, sp += p, szz += z * z, szp += z * p;
-        ++wall_n;
-      }
-      if (z > kDepth + 3 * s) above_max = std::max(above_max, std::abs(p));
-    }
-  }
-  ASSERT_EQ(floor_n, 10 * 64);
-  const double floor = floor_sum / floor_n;
+  const AtRest rest = wall_pressure_at_rest(dir.file("out/frames"), 21, 30);
+  ASSERT_EQ(rest.floor_n, 10 * 64);
+  const double floor = rest.floor, slope = rest.slope, above_max = rest.above_max;
   const double wide = run.sensors.mean_from(1, 1.0);
-  const double slope = (wall_n * szp - sz * sp) / (wall_n * szz - sz * sz);
   test::figure("wall pressure of the floor's middle", floor, "Pa");
   test::figure("against the wide floor sensor", floor / wide - 1, "");
   test::figure("wall pressure's gradient on the walls over -rho0 g", -slope / (kRho0 * kG), "");
@@ -271,56 +288,17 @@ TEST(Sensors, TheWallPressureFieldReadsTheWaterAtRest) {
 TEST(Sensors, TheWallPressureOfAPartThinnerThanACellIsItsLoad) {
   test::TempDir dir;
   mesh::export_mesh(mesh::open_box(Vec3d(0, 0, 0), Vec3d(0.1, 0.1, 0.3), 0.01), dir.file("thin.obj"));
-  const auto sampled = test::run(test::tool("bw-sample") + " " + dir.file("thin.obj") + " -o " + dir.file("thin.h5") +
-                                 " --spacing 0.01");
-  ASSERT_EQ(sampled.exit_code, 0) << sampled.err;
-  std::ofstream(dir.file("thin.toml")) << R"(
-spacing = 0.01
-[time]
-end = 1.0
-frame_rate = 20
-[domain]
-min = [-0.05, -0.05, -0.05]
-max = [0.15, 0.15, 0.35]
-[fluid]
-mu = 0.5
-[[fluid.block]]
-min = [0, 0, 0]
-max = [0.1, 0.1, 0.2]
-[[solid]]
-name = "thin"
-particles = "thin.h5"
-[output]
-fields = ["wall_pressure"]
-)";
+  const std::string scene = write_column(dir, 1.0, false, dir.file("thin.obj"));
   // A sensor on that floor has no face to read, and says why.
-  const auto refused = test::run(test::tool("bw-sim") + " " + dir.file("thin.toml") + " -o " + dir.file("refused") +
+  const auto refused = test::run(test::tool("bw-sim") + " " + scene + " -o " + dir.file("refused") +
                                  " --set 'sensor=[{name = \"floor\", at = [0.05, 0.05, 0]}]'");
   EXPECT_EQ(refused.exit_code, 2) << refused.err;
   EXPECT_NE(refused.err.find("the particles there are of a part thinner than a cell"), std::string::npos)
       << refused.err;
-  test::run_scene(dir.file("thin.toml"), dir.file("out"));
-  const double s = 0.01;
-  double floor_sum = 0, sz = 0, sp = 0, szz = 0, szp = 0;
-  int floor_n = 0, wall_n = 0;
-  for (int f = 11; f <= 20; ++f) {
-    const FrameData d = read_frame(frame_file_name(dir.file("out/frames"), f));
-    for (std::size_t k = 0; k < d.bx.size(); ++k) {
-      const double x = d.bx[k], y = d.by[k], z = d.bz[k], p = d.bp[k];
-      if (std::abs(z + s / 2) < 1e-4 && std::abs(x - 0.05) < 0.04 && std::abs(y - 0.05) < 0.04) {
-        floor_sum += p;
-        ++floor_n;
-      }
-      const bool wall = std::abs(x + s / 2) < 1e-4 || std::abs(x - 0.1 - s / 2) < 1e-4;
-      if (wall && y > 0.02 && y < 0.08 && z > 0.02 && z < 0.18) {
-        sz += z, sp += p, szz += z * z, szp += z * p;
-        ++wall_n;
-      }
-    }
-  }
-  ASSERT_EQ(floor_n, 10 * 64);
-  const double floor = floor_sum / floor_n;
-  const double slope = (wall_n * szp - sz * sp) / (wall_n * szz - sz * sz);
+  test::run_scene(scene, dir.file("out"));
+  const AtRest rest = wall_pressure_at_rest(dir.file("out/frames"), 11, 20);
+  ASSERT_EQ(rest.floor_n, 10 * 64);
+  const double floor = rest.floor, slope = rest.slope;
   test::figure("thin floor's middle over rho0 g H", floor / (kRho0 * kG * kDepth) - 1, "");
   test::figure("thin walls' gradient over -rho0 g", -slope / (kRho0 * kG) - 1, "");
   EXPECT_NEAR(floor / (kRho0 * kG * kDepth), 1.0, 0.03);
