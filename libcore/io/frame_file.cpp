@@ -61,6 +61,31 @@ void read_boundary_and_bodies(const h5::Group& step, FrameData& f) {
   if (step.is_group("bodies")) f.bodies = read_bodies(step.open_group("bodies"));
 }
 
+// The whole frame, or (with_fluid false) all but the fluid's arrays.
+FrameData read_frame_parts(const std::string& path, bool with_fluid) {
+  h5::File file = h5::File::open(path, kKind);
+  const h5::Group& root = file.root();
+  FrameData f;
+  f.frame = root.attr<std::int32_t>("frame");
+  f.time = root.attr<double>("time");
+  const h5::Group step = open_step(file, f.frame);
+  if (with_fluid) {
+    std::size_t n = 0;
+    f.x = step.read_rows<float>("x", 0, &n);
+    read_optional(step, "y", n, f.y);
+    read_optional(step, "z", n, f.z);
+    if (f.y.size() != n || f.z.size() != n) fail_input("{}: missing y or z", step.where());
+    read_optional(step, "vx", n, f.vx);
+    read_optional(step, "vy", n, f.vy);
+    read_optional(step, "vz", n, f.vz);
+    read_optional(step, "rho", n, f.rho);
+    read_optional(step, "p", n, f.p);
+    read_optional(step, "id", n, f.id);
+  }
+  read_boundary_and_bodies(step, f);
+  return f;
+}
+
 }  // namespace
 
 FrameFields FrameData::fields() const {
@@ -150,37 +175,9 @@ void write_frame(const FrameData& f, const std::string& path) {
   file.commit();
 }
 
-FrameData read_frame(const std::string& path) {
-  h5::File file = h5::File::open(path, kKind);
-  const h5::Group& root = file.root();
-  FrameData f;
-  f.frame = root.attr<std::int32_t>("frame");
-  f.time = root.attr<double>("time");
-  const h5::Group step = open_step(file, f.frame);
-  std::size_t n = 0;
-  f.x = step.read_rows<float>("x", 0, &n);
-  read_optional(step, "y", n, f.y);
-  read_optional(step, "z", n, f.z);
-  if (f.y.size() != n || f.z.size() != n) fail_input("{}: missing y or z", step.where());
-  read_optional(step, "vx", n, f.vx);
-  read_optional(step, "vy", n, f.vy);
-  read_optional(step, "vz", n, f.vz);
-  read_optional(step, "rho", n, f.rho);
-  read_optional(step, "p", n, f.p);
-  read_optional(step, "id", n, f.id);
-  read_boundary_and_bodies(step, f);
-  return f;
-}
+FrameData read_frame(const std::string& path) { return read_frame_parts(path, true); }
 
-FrameData read_frame_boundary(const std::string& path) {
-  h5::File file = h5::File::open(path, kKind);
-  const h5::Group& root = file.root();
-  FrameData f;
-  f.frame = root.attr<std::int32_t>("frame");
-  f.time = root.attr<double>("time");
-  read_boundary_and_bodies(open_step(file, f.frame), f);
-  return f;
-}
+FrameData read_frame_boundary(const std::string& path) { return read_frame_parts(path, false); }
 
 FrameHeader read_frame_header(const std::string& path, bool with_bodies) {
   h5::File file = h5::File::open(path, kKind);
