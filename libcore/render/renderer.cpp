@@ -281,6 +281,11 @@ void Renderer::Impl::set_mesh_layout(GLuint vao, GLuint buffer) {
 void Renderer::Impl::set_paint(const RenderInput& in) {
   const bool paint = settings.solids == SolidColoring::kWallPressure && in.paint;
   mesh.set("u_paint", paint ? 1 : 0);
+  // Bound in every frame: a program's storage blocks have buffers whether it reads them or not.
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, paint_points.id);
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, paint_cells.id);
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, paint_start.id);
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, paint_colors.id);
   if (!paint) return;
   const PaintTable& t = *in.paint;
   paint_points.upload(t.points.data(), t.points.size() * sizeof(float));
@@ -291,10 +296,6 @@ void Renderer::Impl::set_paint(const RenderInput& in) {
   gl::ProgramUniform2f(mesh.id(), gl::GetUniformLocation(mesh.id(), "u_paint_range"),
                        static_cast<float>(in.paint_scale.min), static_cast<float>(in.paint_scale.max));
   mesh.set("u_paint_colors", kPaintColors);
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, paint_points.id);
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, paint_cells.id);
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, paint_start.id);
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, paint_colors.id);
 }
 
 void Renderer::Impl::build() {
@@ -360,6 +361,7 @@ void Renderer::Impl::build() {
   gl::VertexArrayAttribBinding(vao_mesh, 3, 1);
   const std::vector<float> colors = paint_colors_linear(kPaintColors);
   paint_colors.upload(colors.data(), colors.size() * sizeof(float));
+  for (Buffer* b : {&paint_points, &paint_cells, &paint_start}) b->upload(nullptr, 0);
   float range[2] = {1, 64};
   gl::GetFloatv(GL_POINT_SIZE_RANGE, range);
   max_point_size = range[1];
