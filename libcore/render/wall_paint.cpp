@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unordered_set>
 
 #include "common/error.h"
@@ -158,19 +159,33 @@ std::vector<float> paint_colors_linear(int samples) {
   return out;
 }
 
-PaintRange wall_pressure_range(const std::vector<std::string>& frame_paths) {
+PaintRange wall_pressure_range(const std::vector<std::string>& frame_paths, std::size_t max_samples) {
   PaintRange r;
   std::vector<float> loaded;
+  std::size_t stride = 1;  // every stride-th loaded patch is kept
+  r.peak = -std::numeric_limits<double>::infinity();
   for (const std::string& path : frame_paths) {
     const FrameData frame = read_frame_boundary(path);
     require_wall_pressure(frame.fields(), path);
-    for (float p : frame.bp)
-      if (p != 0.0f && std::isfinite(p)) loaded.push_back(p);
+    for (float p : frame.bp) {
+      if (p == 0.0f || !std::isfinite(p)) continue;
+      r.peak = std::max(r.peak, static_cast<double>(p));
+      if (r.samples++ % stride != 0) continue;
+      loaded.push_back(p);
+      if (loaded.size() > std::max<std::size_t>(max_samples, 2)) {
+        // Keep every second: the share stays even over everything seen.
+        std::size_t kept = 0;
+        for (std::size_t k = 0; k < loaded.size(); k += 2) loaded[kept++] = loaded[k];
+        loaded.resize(kept);
+        stride *= 2;
+      }
+    }
     ++r.frames;
   }
-  r.samples = loaded.size();
-  if (loaded.empty()) return r;  // nothing loaded anywhere: [0, 1] Pa, every face at the bottom colour
-  r.peak = *std::max_element(loaded.begin(), loaded.end());
+  if (loaded.empty()) {  // nothing loaded anywhere: [0, 1] Pa, every face at the bottom colour
+    r.peak = 0;
+    return r;
+  }
   const double high = percentile(loaded, 0.99);
   // Suction shows only where it is more than a trace of the loads (a few patches'
   // fractions of a pascal would otherwise start the scale just below 0).

@@ -59,11 +59,14 @@ std::vector<float> paint_colors_linear(int samples);
 // percentile of the loaded patches' pressures (non-zero),
 // pooled over the given frames, so that a few single patches' spikes do not darken
 // everything else, and every part of a sequence rendered in pieces has the same scale.
+// The percentiles come from every loaded patch while there are at most `max_samples`
+// of them, else from an even, deterministic share of them (every 2nd, 4th, ... in the
+// frames' order), so that a long run's scale costs bounded memory.
 struct PaintRange {
   ColorScale scale;
-  std::size_t frames = 0, samples = 0;  // frames read, loaded patches pooled
+  std::size_t frames = 0, samples = 0;  // frames read, loaded patches seen
   double peak = 0;                      // the highest patch pressure of all
 };
-PaintRange wall_pressure_range(const std::vector<std::string>& frame_paths);
+PaintRange wall_pressure_range(const std::vector<std::string>& frame_paths, std::size_t max_samples = 1 << 23);
 
 }  // namespace bw::render

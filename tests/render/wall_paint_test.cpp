@@ -148,6 +148,12 @@ TEST(WallPaint, TheRangeIsThePercentilesOfTheLoadedPatchesOfEveryFrame) {
   // The 99th percentile of 1..1000 and the spike: the spike does not set the scale.
   EXPECT_GE(r.scale.max, 985.0);
   EXPECT_LE(r.scale.max, 1000.0);
+  // From an even share of at most 100 of the 1001 patches: the same within the
+  // share's step (16 patches of 1 Pa apart here), the peak and the count exact.
+  const br::PaintRange shared = br::wall_pressure_range(paths, 100);
+  EXPECT_EQ(shared.samples, 1001u);
+  EXPECT_EQ(shared.peak, 1e6);
+  EXPECT_NEAR(shared.scale.max, r.scale.max, 16.0);
 
   // Suction: a trace of it (a tenth of the patches at -1 Pa) leaves the scale at 0; a
   // fifth at -200 Pa starts it at their 1st percentile.
