@@ -100,18 +100,21 @@ void describe_steps(const h5::Group& root, Report& out) {
       }
       add_bounds(xyz, s);
     }
-    std::vector<std::string> fields;
-    for (const std::string& child : step.children())
-      if (!step.is_group(child)) fields.push_back(child);
-    std::string list;
-    for (const auto& f : fields) list += (list.empty() ? "" : " ") + f;
-    s.set("fields", list);
+    const auto datasets_of = [](const h5::Group& g) {
+      std::string list;
+      for (const std::string& child : g.children())
+        if (!g.is_group(child)) list += (list.empty() ? "" : " ") + child;
+      return list;
+    };
+    s.set("fields", datasets_of(step));
+    // Groups of their own particles (boundary, bodies): how many and what they hold.
     for (const std::string& child : step.children()) {
       if (step.is_group(child)) {
         const h5::Group sub = step.open_group(child);
         const auto children = sub.children();
         if (!children.empty() && !sub.is_group(children.front())) {
           s.set(child + "_count", static_cast<std::int64_t>(sub.shape(children.front()).empty() ? 0 : sub.shape(children.front())[0]));
+          s.set(child + "_fields", datasets_of(sub));
         }
       }
     }

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "io/frame_file.h"
 #include "io/h5.h"
 #include "io/particles_file.h"
 #include "mesh/import.h"
@@ -110,6 +111,21 @@ TEST(BwInfo, DescribesEveryKindAndRefusesForeignFiles) {
   EXPECT_NE(text.out.find("kind: particles"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("/surface/position"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("not sampled"), std::string::npos) << text.out;
+
+  // A frame: the water's fields, and the boundary's count and what it holds (the wall
+  // pressure bw-render colours the solids by).
+  bw::FrameData frame;
+  frame.x = frame.y = frame.z = {0.5f, 0.6f};
+  frame.p = {10, 20};
+  frame.bx = frame.by = frame.bz = {0, 1, 2};
+  frame.bp = {0, 5, 0};
+  frame.bsolid = {0, 0, 1};
+  bw::write_frame(frame, dir.file("frame.h5"));
+  const auto described = run(kInfo + " " + dir.file("frame.h5"));
+  EXPECT_EQ(described.exit_code, 0) << described.err;
+  EXPECT_NE(described.out.find("fields: p x y z\n"), std::string::npos) << described.out;
+  EXPECT_NE(described.out.find("boundary_count: 3\n"), std::string::npos) << described.out;
+  EXPECT_NE(described.out.find("boundary_fields: p solid x y z\n"), std::string::npos) << described.out;
 
   write_text(dir.file("notes.txt"), "hello\n");
   const auto foreign = run(kInfo + " " + dir.file("notes.txt"));
