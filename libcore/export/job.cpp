@@ -12,6 +12,7 @@
 #include "common/error.h"
 #include "common/terminal.h"
 #include "export/blender_scene.h"
+#include "export/wall_points.h"
 #include "io/frame_file.h"
 #include "io/run_file.h"
 #include "mesh/import.h"
@@ -43,9 +44,14 @@ std::string water_file_name(const std::string& dir, int frame, const std::string
   return fmt::format("{}/water_{:06d}.{}", dir, frame, extension);
 }
 
+std::string wall_points_file_name(const std::string& dir, int frame) {
+  return fmt::format("{}/wall_pressure_{:06d}.vdb", dir, frame);
+}
+
 ExportPlan plan_export(const ExportJob& job) {
   ExportPlan plan;
-  if (!job.water && !job.solids) fail_input("nothing to export: both the water and the solids are left out");
+  if (!job.water && !job.solids && !job.wall_pressure)
+    fail_input("nothing to export: both the water and the solids are left out");
   if (!job.mesh_format.empty() && job.mesh_format != "obj" && job.mesh_format != "ply")
     fail_input("--mesh '{}': expected obj or ply", job.mesh_format);
   if (!job.mesh_format.empty() && !job.water) fail_input("--mesh asks for the water, which --no-water leaves out");
@@ -59,7 +65,10 @@ ExportPlan plan_export(const ExportJob& job) {
   RunRecord run;
   if (!plan.run_path.empty()) run = read_run(plan.run_path);
 
-  if (job.water) {
+  if (job.wall_pressure)  // every frame holds the field before anything is written
+    for (const FrameRef& f : plan.frames) require_wall_pressure(read_frame_header(f.path).fields, f.path);
+
+  if (job.water || job.wall_pressure) {
     plan.water_options = job.water_options;
     if (plan.water_options.spacing > 0) {
       plan.spacing_source = "--spacing";
@@ -169,6 +178,12 @@ ExportReport run_export(const ExportJob& job, const std::function<void(const Exp
   for (std::size_t k = 0; k < plan.frames.size(); ++k) {
     const FrameRef& ref = plan.frames[k];
     FrameData frame = read_frame(ref.path);
+    if (job.wall_pressure) {
+      // On a grid of the particles' spacing: a few points a voxel, as OpenVDB's points like.
+      const std::size_t n = write_wall_points(frame, plan.water_options.up, plan.water_options.spacing,
+                                              wall_points_file_name(job.output_dir, ref.number), ref.path);
+      report.max_wall_points = std::max(report.max_wall_points, n);
+    }
     if (plan.solids) poses.push_back({ref.number, frame.time, std::move(frame.bodies)});
     if (job.water) {
       Stopwatch water_clock;

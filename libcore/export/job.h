@@ -4,6 +4,8 @@
 //   OUT_DIR/water_NNNNNN.vdb   the water of frame NNNNNN: level set "surface" (and
 //                              fog volume "density" when asked), water.h
 //   OUT_DIR/water_NNNNNN.obj   (or .ply) its surface as triangles, when asked
+//   OUT_DIR/wall_pressure_NNNNNN.vdb  the boundary particles with their wall pressure
+//                              as points, when asked, wall_points.h
 //   OUT_DIR/solids.glb         every solid and body, animated over the range, gltf.h
 //   OUT_DIR/blender_scene.py   sets up a Blender scene from those files, blender_scene.h
 #pragma once
@@ -30,6 +32,7 @@ struct ExportJob {
   bool density = false;          // a "density" fog grid beside "surface"
   std::string mesh_format;       // "", "obj" or "ply": the surface as a mesh too
   double mesh_adaptivity = 0;
+  bool wall_pressure = false;    // the boundary particles with their wall pressure, as points
   bool solids = true;            // solids.glb (when the run has solids) and blender_scene.py
   bool camera = true;            // the scene's [camera] in solids.glb, when it has one
   std::string scene_path;        // empty: the run's scene, as the run file keeps it
@@ -66,6 +69,7 @@ struct ExportReport {
   double seconds = 0;
   double water_ms_per_frame = 0;   // level set, filter and .vdb, per frame
   std::size_t max_particles = 0, max_voxels = 0, max_triangles = 0;
+  std::size_t max_wall_points = 0;  // boundary particles in a wall_pressure file
   WaterOptions water_options;
   std::string spacing_source;
   std::string gltf_path;
@@ -82,5 +86,7 @@ ExportReport run_export(const ExportJob& job, const std::function<void(const Exp
 
 // "OUT_DIR/water_000042.vdb" and the like.
 std::string water_file_name(const std::string& dir, int frame, const std::string& extension);
+// "OUT_DIR/wall_pressure_000042.vdb".
+std::string wall_points_file_name(const std::string& dir, int frame);
 
 }  // namespace bw::exporter

@@ -1,9 +1,11 @@
 // bw-export end to end on a small run: the files it writes, frame ranges, and bad
 // inputs refused with one line, exit status 2 and nothing written.
+#include <cmath>
 #include <fstream>
 
 #include <gtest/gtest.h>
 
+#include "export/wall_points.h"
 #include "export_fixture.h"
 #include "io/frame_file.h"
 #include "test_support.h"
@@ -62,6 +64,8 @@ TEST(ExportTool, BadInputsWriteNothing) {
       {dir.file("frames") + out + " --radius 1e-6", "the voxel edge 5e-07 m (--voxel)"},
       {dir.file("frames") + out + " --radius 0.05 --voxel 0.0005", "--radius 0.05 m spans 100 voxels of 0.0005 m, more than 64"},
       {dir.file("frames") + out + " --no-water --density", "--density asks for the water, which --no-water leaves out"},
+      {dir.file("frames") + out + " --wall-pressure",
+       "000000.h5: holds no wall pressure; add \"wall_pressure\" to the scene's [output] fields"},
       {dir.file("frames") + out + " --fragments " + dir.file("u.h5"), "u.h5: is a 'particles' file, expected a 'fragments' file"},
       {dir.file("frames") + out + " --run " + dir.file("frames/000000.h5"), "000000.h5: is a 'frame' file, expected a 'run' file"},
       {dir.file("frames") + out + " --scene " + dir.file("bad.toml"),
@@ -86,6 +90,37 @@ TEST(ExportTool, BadInputsWriteNothing) {
     EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
     EXPECT_EQ(test::line_count(r.err), 1) << r.err;
     EXPECT_EQ(test::exists(dir.file("out")) ? test::list_folder(dir.file("out")) : "", "") << c.args;
+  }
+}
+
+// --wall-pressure: per frame the boundary particles with their wall pressure as
+// OpenVDB points, beside the water and the solids; in Houdini's up axis with --up y.
+TEST(ExportTool, TheWallPressureGoesOutAsPoints) {
+  test::TempDir dir;
+  test::write_export_run(dir.path());
+  for (int n = 0; n < 3; ++n) {
+    FrameData f = read_frame(frame_file_name(dir.file("frames"), n));
+    for (int k = 0; k < 50; ++k) {
+      f.bx.push_back(0.02f * static_cast<float>(k)), f.by.push_back(0.5f), f.bz.push_back(0.1f);
+      f.bp.push_back(static_cast<float>(1000 * n + k)), f.bsolid.push_back(0);
+    }
+    write_frame(f, frame_file_name(dir.file("frames"), n));
+  }
+  const auto r = test::run(export_cmd(dir.file("frames") + " -o " + dir.file("out") + " --wall-pressure --up y"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(test::list_folder(dir.file("out")),
+            "blender_scene.py solids.glb wall_pressure_000000.vdb wall_pressure_000001.vdb wall_pressure_000002.vdb "
+            "water_000000.vdb water_000001.vdb water_000002.vdb");
+  EXPECT_NE(r.err.find("wall_pressure_NNNNNN.vdb, points \"wall_pressure\" (P, pressure, solid), up to 50 a frame"),
+            std::string::npos)
+      << r.err;
+  const std::vector<exporter::WallPoint> points = exporter::read_wall_points(dir.file("out/wall_pressure_000002.vdb"));
+  ASSERT_EQ(points.size(), 50u);
+  for (const exporter::WallPoint& p : points) {
+    const int k = static_cast<int>(std::lround(p.position.x() / 0.02));
+    EXPECT_EQ(p.pressure, static_cast<float>(2000 + k));
+    EXPECT_NEAR(p.position.y(), 0.1, 1e-6);   // z up becomes y up
+    EXPECT_NEAR(p.position.z(), -0.5, 1e-6);
   }
 }
 

@@ -22,6 +22,7 @@ struct Options {
   double erode = 0;
   std::string up = "z";
   bool density = false;
+  bool wall_pressure = false;
   bool no_water = false;
   bool no_solids = false;
   std::string scene;
@@ -38,6 +39,7 @@ struct Options {
     j.fragments_path = fragments;
     j.water = !no_water;
     j.density = density;
+    j.wall_pressure = wall_pressure;
     j.mesh_format = mesh;
     j.mesh_adaptivity = adaptivity;
     j.solids = !no_solids;
@@ -67,6 +69,10 @@ void print_summary(const Options& o, const bw::exporter::ExportReport& r) {
                    w.spacing, r.spacing_source.c_str(), w.radius, w.voxel, w.smooth, w.smooth == 1 ? "" : "es",
                    w.erode);
   }
+  if (o.wall_pressure)
+    std::fprintf(stderr, "  wall         wall_pressure_NNNNNN.vdb, points \"wall_pressure\" (P, pressure, solid), up to "
+                 "%zu a frame\n",
+                 r.max_wall_points);
   if (!r.gltf_path.empty()) {
     std::fprintf(stderr, "  solids       %s: %zu static, %zu bodies, %zu triangles, %s\n", r.gltf_path.c_str(),
                  r.gltf.static_nodes, r.gltf.body_nodes, r.gltf.triangles, bw::human_bytes(r.gltf.bytes).c_str());
@@ -101,14 +107,16 @@ void print_summary(const Options& o, const bw::exporter::ExportReport& r) {
 int main(int argc, char** argv) {
   CLI::App app{"Export a simulation's frames for Blender, Houdini and other programs: the water as\n"
                "OpenVDB level sets (OUT_DIR/water_NNNNNN.vdb, a grid named \"surface\"), optionally as\n"
-               "meshes too, every solid and body as one animated glTF (OUT_DIR/solids.glb), and a script\n"
-               "that sets up a Blender scene from them (OUT_DIR/blender_scene.py).",
+               "meshes too, every solid and body as one animated glTF (OUT_DIR/solids.glb), a script\n"
+               "that sets up a Blender scene from them (OUT_DIR/blender_scene.py), and with --wall-pressure\n"
+               "the pressure on the solids as OpenVDB points (OUT_DIR/wall_pressure_NNNNNN.vdb).",
                "bw-export"};
   bw::cli::setup(app,
                  "  bw-export out/scenes/plate/0.025/frames -o out/scenes/plate/0.025/export\n"
                  "  bw-export run/frames -o export --frames 0:44 --no-solids        # one part of a split job\n"
                  "  bw-export run/frames -o export --no-water                       # only solids.glb\n"
-                 "  bw-export run/frames -o export --mesh obj --density --radius 0.03 --smooth 2\n");
+                 "  bw-export run/frames -o export --mesh obj --density --radius 0.03 --smooth 2\n"
+                 "  bw-export run/frames -o export --wall-pressure --up y                # for Houdini\n");
   Options o;
   app.add_option("frames_dir", o.frames_dir, "Folder of frame files (OUTDIR/frames of a simulation)")->required();
   app.add_option("-o,--output", o.output_dir, "Folder for the files (created when missing)")->required();
@@ -121,6 +129,9 @@ int main(int argc, char** argv) {
   app.add_option("--adaptivity", o.adaptivity, "Mesh simplification in [0, 1] (default 0: none)")
       ->check(bw::cli::in_range(0, 1));
   app.add_flag("--density", o.density, "Also write a fog volume grid \"density\" (for volume shaders)");
+  app.add_flag("--wall-pressure", o.wall_pressure,
+               "Also write the solids' boundary particles with their wall pressure as OpenVDB points "
+               "(OUT_DIR/wall_pressure_NNNNNN.vdb; frames with the wall_pressure field)");
   app.add_option("--spacing", o.spacing, "Particle spacing in m (default: the run's /parameters/spacing)")
       ->check(bw::cli::kPositive);
   app.add_option("--radius", o.radius, "Sphere radius per particle in m (default: the spacing)")
