@@ -445,9 +445,12 @@ Image Renderer::render(const RenderInput& in) {
   if (in.solids && !in.solids->vertices.empty()) {
     r.solid_vertices.upload(in.solids->vertices.data(), in.solids->vertices.size() * sizeof(float));
     solid_vertex_count = in.solids->vertices.size() / 9;
-    std::vector<std::int32_t> rows = in.solids->solid;
-    rows.resize(solid_vertex_count, -1);
-    r.solid_rows.upload(rows.data(), rows.size() * sizeof(std::int32_t));
+    if (in.solids->solid.size() == solid_vertex_count) {
+      r.solid_rows.upload(in.solids->solid.data(), solid_vertex_count * sizeof(std::int32_t));
+    } else {  // a soup made without rows: no solid's particles colour it
+      const std::vector<std::int32_t> none(solid_vertex_count, -1);
+      r.solid_rows.upload(none.data(), none.size() * sizeof(std::int32_t));
+    }
     const Aabb b = in.solids->bounds();
     if (!b.empty()) content.add(b.min), content.add(b.max);
   }

@@ -139,8 +139,9 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
 
   SequenceReport report;
   report.fps = plan.fps;
+  RunRecord run;  // empty without a run file
   const SolidScene solids =
-      SolidScene::load({plan.run_path, job.fragments_path}, {settings.solid_color, settings.body_color});
+      SolidScene::load({plan.run_path, job.fragments_path}, {settings.solid_color, settings.body_color}, &run);
   report.solids = solids.solid_count();
   report.fragments = solids.fragment_count();
 
@@ -157,7 +158,7 @@ SequenceReport render_sequence(const SequenceJob& job, const std::function<void(
   const bool paint = settings.solids == SolidColoring::kWallPressure;
   double boundary_spacing = 0;
   if (paint) {
-    boundary_spacing = read_run(plan.run_path).parameter("spacing").value_or(0);
+    boundary_spacing = run.parameter("spacing").value_or(0);
     if (!(boundary_spacing > 0)) fail_input("{}: /parameters/spacing is missing or not positive", plan.run_path);
     if (settings.pressure_range) {
       report.paint = PaintRange{};

@@ -49,7 +49,7 @@ Aabb TriangleSoup::bounds() const {
   return box;
 }
 
-SolidScene SolidScene::load(const SolidSources& sources, const SolidColors& colors) {
+SolidScene SolidScene::load(const SolidSources& sources, const SolidColors& colors, RunRecord* run_out) {
   RunRecord run;
   std::vector<TriMesh> meshes;
   if (!sources.run_path.empty()) {
@@ -58,7 +58,9 @@ SolidScene SolidScene::load(const SolidSources& sources, const SolidColors& colo
   }
   FragmentSet fragments;
   if (!sources.fragments_path.empty()) fragments = read_fragments(sources.fragments_path);
-  return from(run, std::move(meshes), std::move(fragments), sources, colors);
+  SolidScene scene = from(run, std::move(meshes), std::move(fragments), sources, colors);
+  if (run_out) *run_out = std::move(run);
+  return scene;
 }
 
 SolidScene SolidScene::from(const RunRecord& run, std::vector<TriMesh> solid_meshes, FragmentSet fragments,

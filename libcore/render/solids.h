@@ -48,8 +48,9 @@ struct SolidColors {
 class SolidScene {
  public:
   // Reads the run file, the particle files it names (each once) and the fragments
-  // file. Throws InputError naming the file at fault.
-  static SolidScene load(const SolidSources& sources, const SolidColors& colors);
+  // file; `run` (optional) receives the run file's record, for what else a caller
+  // needs of it. Throws InputError naming the file at fault.
+  static SolidScene load(const SolidSources& sources, const SolidColors& colors, RunRecord* run = nullptr);
   // The same from what a caller has read already: the run, its solids' meshes in the
   // reference configuration (reference_meshes, run_file.h) and the fragments (none:
   // an empty set). `sources` names the files in messages.
