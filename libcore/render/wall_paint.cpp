@@ -91,12 +91,13 @@ PaintTable paint_table(const FrameData& frame, double spacing, const std::string
   while (buckets < 2 * kept.size()) buckets *= 2;
   t.mask = buckets - 1;
   // Counting sort by bucket, in the particles' order within a bucket.
+  std::vector<Cell> cell(kept.size());
   std::vector<std::uint32_t> bucket(kept.size());
   t.start.assign(buckets + 1, 0);
   for (std::size_t i = 0; i < kept.size(); ++i) {
     const std::size_t k = kept[i];
-    const Cell c = cell_of(frame.bx[k], frame.by[k], frame.bz[k], t.reach);
-    bucket[i] = paint_bucket(c.x, c.y, c.z, t.mask);
+    cell[i] = cell_of(frame.bx[k], frame.by[k], frame.bz[k], t.reach);
+    bucket[i] = paint_bucket(cell[i].x, cell[i].y, cell[i].z, t.mask);
     ++t.start[bucket[i] + 1];
   }
   for (std::uint32_t b = 0; b < buckets; ++b) t.start[b + 1] += t.start[b];
@@ -106,9 +107,8 @@ PaintTable paint_table(const FrameData& frame, double spacing, const std::string
   for (std::size_t i = 0; i < kept.size(); ++i) {
     const std::size_t k = kept[i];
     const std::uint32_t at = next[bucket[i]]++;
-    const Cell c = cell_of(frame.bx[k], frame.by[k], frame.bz[k], t.reach);
     const float p[4] = {frame.bx[k], frame.by[k], frame.bz[k], frame.bp[k]};
-    const std::int32_t q[4] = {c.x, c.y, c.z, frame.bsolid[k]};
+    const std::int32_t q[4] = {cell[i].x, cell[i].y, cell[i].z, frame.bsolid[k]};
     std::copy(p, p + 4, t.points.begin() + 4 * at);
     std::copy(q, q + 4, t.cells.begin() + 4 * at);
   }
