@@ -94,7 +94,9 @@ class Applier {
   void apply(toml::table& root) {
     const std::size_t eq = text_.find('=');
     if (eq == std::string::npos) fail("expected KEY=VALUE, e.g. fluid.c0=40");
-    const std::string_view key = trim(std::string_view(text_).substr(0, eq));
+    // KEY+=VALUE appends to the array KEY (the elements of an array value, or the value).
+    const bool append = eq > 0 && text_[eq - 1] == '+';
+    const std::string_view key = trim(std::string_view(text_).substr(0, append ? eq - 1 : eq));
     const std::string_view value = trim(std::string_view(text_).substr(eq + 1));
     const std::vector<Segment> path = parse_key(key);
     if (path.empty())
@@ -111,6 +113,17 @@ class Applier {
       const bool last = k + 1 == path.size();
       where += (where.empty() ? "" : ".") + s.name;
       if (!s.index) {
+        if (last && append) {
+          toml::node* n = table->get(s.name);
+          if (!n) n = table->insert(s.name, toml::array{}).first->second.as_array();
+          toml::array* a = n->as_array();
+          if (!a) fail(fmt::format("{} is {}; += appends to an array", where, kind_of(*n)));
+          if (toml::array* values = v.as_array())
+            for (toml::node& e : *values) put(*a, a->size(), e);
+          else
+            put(*a, a->size(), v);
+          return;
+        }
         if (last) {
           put(*table, s.name, v);
           return;
@@ -123,6 +136,7 @@ class Applier {
         table = n->as_table();
         continue;
       }
+      if (last && append) fail(fmt::format("{}[{}]: += appends to an array: name the array, {}", where, *s.index, where));
       const std::size_t i = *s.index;
       toml::node* n = table->get(s.name);
       if (!n) {

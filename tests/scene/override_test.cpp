@@ -84,6 +84,24 @@ TEST(SceneOverrides, CreateMissingTablesAndAppendElements) {
   EXPECT_DOUBLE_EQ(s.emitters[0].radius, 0.05);
 }
 
+// KEY+=VALUE appends to an array: an array value's elements, or the value itself; a
+// missing array starts with them; a table value appends to an array of tables.
+TEST(SceneOverrides, AppendToArrays) {
+  Folder f;
+  const Scene s = f.load({"output.fields=[\"velocity\"]", "output.fields+=[\"density\", \"pressure\"]",
+                          "output.fields += \"wall_pressure\"",
+                          "fluid.block+={min = [0.6, 0.6, 0.6], max = [0.8, 0.8, 0.8]}"});
+  EXPECT_EQ(s.field_names, (std::vector<std::string>{"velocity", "density", "pressure", "wall_pressure"}));
+  EXPECT_TRUE(s.fields.velocity && s.fields.density && s.fields.pressure && s.fields.wall_pressure);
+  ASSERT_EQ(s.blocks.size(), 2u);
+  EXPECT_EQ(s.blocks[1].min, Vec3d(0.6, 0.6, 0.6));
+  // No [output] in the scene: the array starts with the appended values.
+  EXPECT_EQ(f.load({"output.fields+=[\"id\"]"}).field_names, (std::vector<std::string>{"id"}));
+  expect_error(f, {"spacing+=0.01"}, "--set spacing+=0.01: spacing is a number; += appends to an array");
+  expect_error(f, {"domain.max[2]+=1"}, "domain.max[2]: += appends to an array: name the array, domain.max");
+  expect_error(f, {"output.fields+=[\"colour\"]"}, "output.fields: 'colour' is not a field");
+}
+
 TEST(SceneOverrides, LaterOverridesWin) {
   Folder f;
   EXPECT_DOUBLE_EQ(f.load({"time.cfl=0.2", "time.cfl=0.3"}).time.cfl, 0.3);

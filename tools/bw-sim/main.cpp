@@ -84,7 +84,8 @@ int main(int argc, char** argv) {
       ->check(bw::cli::kPositive);
   app.add_option("--set", o.overrides,
                  "Override a scene key, KEY=VALUE (repeatable): time.cfl=0.2, fluid.block[0].max=[0.1, 0.15, 0.2], "
-                 "solid[0].particles=tank.h5 (docs/scene.md)")
+                 "solid[0].particles=tank.h5; KEY+=VALUE appends to an array: output.fields+=[\"wall_pressure\"] "
+                 "(docs/scene.md)")
       ->allow_extra_args(false);  // one KEY=VALUE per --set: the scene may follow it
   app.add_option("--checkpoint-every", o.checkpoint_every,
                  "Write OUTDIR/checkpoint.h5 every N frames (0: only when SIGTERM or SIGINT stops the run; default: the "
